@@ -94,70 +94,62 @@ impl<S: Scalar> Control<S> {
     }
 }
 
-/// A rational tableau coefficient.
-type Q = (i32, i32);
-
-/// An explicit, first-same-as-last Runge-Kutta pair with `M` stages.
-struct Tableau<const M: usize> {
-    c: [Q; M],
-    /// Stage coefficients; the last row holds the weights of the propagated
-    /// solution (first same as last).
-    a: [[Q; M]; M],
-    /// Weights of the error estimate (b - b*).
-    e: [Q; M],
-    /// Accept-and-grow thresholds: the largest factor `f` in [`FACTORS`] with
-    /// `r <= (0.9/f)^q`.
-    thresholds: [f32; FACTORS.len()],
-}
-
+/// Step-size factors, largest first; the controller picks the largest `f`
+/// with `r <= (0.9/f)^q` (r = error ratio), so no power is computed per step.
 const FACTORS: [f32; 12] = [5.0, 4.0, 3.0, 2.0, 1.5, 1.2, 1.0, 0.8, 0.6, 0.4, 0.25, 0.1];
 
-const DP54: Tableau<7> = Tableau {
-    c: [(0, 1), (1, 5), (3, 10), (4, 5), (8, 9), (1, 1), (1, 1)],
-    a: [
-        [(0, 1); 7],
-        [(1, 5), (0, 1), (0, 1), (0, 1), (0, 1), (0, 1), (0, 1)],
-        [(3, 40), (9, 40), (0, 1), (0, 1), (0, 1), (0, 1), (0, 1)],
-        [(44, 45), (-56, 15), (32, 9), (0, 1), (0, 1), (0, 1), (0, 1)],
-        [
-            (19372, 6561),
-            (-25360, 2187),
-            (64448, 6561),
-            (-212, 729),
-            (0, 1),
-            (0, 1),
-            (0, 1),
-        ],
-        [
-            (9017, 3168),
-            (-355, 33),
-            (46732, 5247),
-            (49, 176),
-            (-5103, 18656),
-            (0, 1),
-            (0, 1),
-        ],
-        [
-            (35, 384),
-            (0, 1),
-            (500, 1113),
-            (125, 192),
-            (-2187, 6784),
-            (11, 84),
-            (0, 1),
-        ],
-    ],
-    e: [
-        (71, 57600),
-        (0, 1),
-        (-71, 16695),
-        (71, 1920),
-        (-17253, 339200),
-        (22, 525),
-        (-1, 40),
-    ],
+/// An embedded, first-same-as-last explicit Runge-Kutta pair.
+trait Pair {
+    /// `(0.9/f)^q` for each of [`FACTORS`].
+    const THRESHOLDS: [f32; FACTORS.len()];
+
+    /// One sub-step of size `h` from `(x, y)` with derivative `dy`: the new
+    /// state, its derivative (the last stage) and the error estimate.
+    #[allow(clippy::type_complexity)]
+    fn substep<S: Scalar, const N: usize>(
+        f: &mut impl FnMut(S, &[S; N]) -> Result<[S; N], StepError>,
+        x: S,
+        y: &[S; N],
+        dy: &[S; N],
+        h: S,
+    ) -> Result<([S; N], [S; N], [S; N]), StepError>;
+}
+
+/// `y + h * sum(c_j k_j)`. Called with literal coefficients, so the rational
+/// constants fold at compile time.
+#[inline(always)]
+fn comb<S: Scalar, const N: usize, const T: usize>(
+    y: &[S; N],
+    h: S,
+    terms: [(S, &[S; N]); T],
+) -> [S; N] {
+    let mut out = *y;
+    for (c, k) in terms {
+        let hc = h * c;
+        for i in 0..N {
+            out[i] += hc * k[i];
+        }
+    }
+    out
+}
+
+/// `h * sum(c_j k_j)`.
+#[inline(always)]
+fn sum<S: Scalar, const N: usize, const T: usize>(h: S, terms: [(S, &[S; N]); T]) -> [S; N] {
+    comb(&[S::ZERO; N], h, terms)
+}
+
+#[inline(always)]
+fn r<S: Scalar>(num: i32, den: i32) -> S {
+    S::ratio(num, den)
+}
+
+/// Dormand-Prince 5(4) (Dormand and Prince 1980), local extrapolation.
+struct Dp54;
+
+impl Pair for Dp54 {
     // (0.9/f)^5
-    thresholds: [
+    const THRESHOLDS: [f32; FACTORS.len()] = [
         1.889_568e-4,
         5.766_504e-4,
         2.43e-3,
@@ -170,20 +162,85 @@ const DP54: Tableau<7> = Tableau {
         57.665_04,
         604.661_76,
         59_049.0,
-    ],
-};
+    ];
 
-const BS32: Tableau<4> = Tableau {
-    c: [(0, 1), (1, 2), (3, 4), (1, 1)],
-    a: [
-        [(0, 1); 4],
-        [(1, 2), (0, 1), (0, 1), (0, 1)],
-        [(0, 1), (3, 4), (0, 1), (0, 1)],
-        [(2, 9), (1, 3), (4, 9), (0, 1)],
-    ],
-    e: [(-5, 72), (1, 12), (1, 9), (-1, 8)],
+    #[inline(always)]
+    fn substep<S: Scalar, const N: usize>(
+        f: &mut impl FnMut(S, &[S; N]) -> Result<[S; N], StepError>,
+        x: S,
+        y: &[S; N],
+        k1: &[S; N],
+        h: S,
+    ) -> Result<([S; N], [S; N], [S; N]), StepError> {
+        let k2 = f(x + h * r(1, 5), &comb(y, h, [(r(1, 5), k1)]))?;
+        let k3 = f(
+            x + h * r(3, 10),
+            &comb(y, h, [(r(3, 40), k1), (r(9, 40), &k2)]),
+        )?;
+        let k4 = f(
+            x + h * r(4, 5),
+            &comb(y, h, [(r(44, 45), k1), (r(-56, 15), &k2), (r(32, 9), &k3)]),
+        )?;
+        let k5 = f(
+            x + h * r(8, 9),
+            &comb(
+                y,
+                h,
+                [
+                    (r(19372, 6561), k1),
+                    (r(-25360, 2187), &k2),
+                    (r(64448, 6561), &k3),
+                    (r(-212, 729), &k4),
+                ],
+            ),
+        )?;
+        let k6 = f(
+            x + h,
+            &comb(
+                y,
+                h,
+                [
+                    (r(9017, 3168), k1),
+                    (r(-355, 33), &k2),
+                    (r(46732, 5247), &k3),
+                    (r(49, 176), &k4),
+                    (r(-5103, 18656), &k5),
+                ],
+            ),
+        )?;
+        let y_new = comb(
+            y,
+            h,
+            [
+                (r(35, 384), k1),
+                (r(500, 1113), &k3),
+                (r(125, 192), &k4),
+                (r(-2187, 6784), &k5),
+                (r(11, 84), &k6),
+            ],
+        );
+        let k7 = f(x + h, &y_new)?;
+        let err = sum(
+            h,
+            [
+                (r(71, 57600), k1),
+                (r(-71, 16695), &k3),
+                (r(71, 1920), &k4),
+                (r(-17253, 339200), &k5),
+                (r(22, 525), &k6),
+                (r(-1, 40), &k7),
+            ],
+        );
+        Ok((y_new, k7, err))
+    }
+}
+
+/// Bogacki-Shampine 3(2) (Bogacki and Shampine 1989), local extrapolation.
+struct Bs32;
+
+impl Pair for Bs32 {
     // (0.9/f)^3
-    thresholds: [
+    const THRESHOLDS: [f32; FACTORS.len()] = [
         5.832e-3,
         1.139_062_5e-2,
         2.7e-2,
@@ -196,12 +253,31 @@ const BS32: Tableau<4> = Tableau {
         11.390_625,
         46.656,
         729.0,
-    ],
-};
+    ];
 
-#[inline(always)]
-fn q<S: Scalar>(c: Q) -> S {
-    S::ratio(c.0, c.1)
+    #[inline(always)]
+    fn substep<S: Scalar, const N: usize>(
+        f: &mut impl FnMut(S, &[S; N]) -> Result<[S; N], StepError>,
+        x: S,
+        y: &[S; N],
+        k1: &[S; N],
+        h: S,
+    ) -> Result<([S; N], [S; N], [S; N]), StepError> {
+        let k2 = f(x + h * r(1, 2), &comb(y, h, [(r(1, 2), k1)]))?;
+        let k3 = f(x + h * r(3, 4), &comb(y, h, [(r(3, 4), &k2)]))?;
+        let y_new = comb(y, h, [(r(2, 9), k1), (r(1, 3), &k2), (r(4, 9), &k3)]);
+        let k4 = f(x + h, &y_new)?;
+        let err = sum(
+            h,
+            [
+                (r(-5, 72), k1),
+                (r(1, 12), &k2),
+                (r(1, 9), &k3),
+                (r(-1, 8), &k4),
+            ],
+        );
+        Ok((y_new, k4, err))
+    }
 }
 
 /// The factor by which to change the sub-step size after an error ratio `r`.
@@ -239,16 +315,15 @@ pub(crate) fn advance<S: Scalar, const N: usize>(
     h_try: S,
 ) -> Result<Advanced<S, N>, StepError> {
     match ctl.method {
-        Method::Dp54 => adaptive(&DP54, ctl, f, y0, dy0, len, atol, h_try),
-        Method::Bs32 => adaptive(&BS32, ctl, f, y0, dy0, len, atol, h_try),
+        Method::Dp54 => adaptive::<S, N, Dp54>(ctl, f, y0, dy0, len, atol, h_try),
+        Method::Bs32 => adaptive::<S, N, Bs32>(ctl, f, y0, dy0, len, atol, h_try),
         Method::BackwardEuler => backward_euler(ctl, f, y0, len, atol),
     }
 }
 
 #[allow(clippy::too_many_arguments)]
 #[inline]
-fn adaptive<S: Scalar, const N: usize, const M: usize>(
-    t: &Tableau<M>,
+fn adaptive<S: Scalar, const N: usize, P: Pair>(
     ctl: &Control<S>,
     f: &mut impl FnMut(S, &[S; N]) -> Result<[S; N], StepError>,
     y0: [S; N],
@@ -277,12 +352,12 @@ fn adaptive<S: Scalar, const N: usize, const M: usize>(
         if attempts > ctl.max_substeps || !(h > h_min) {
             return Err(failure);
         }
-        match try_substep(t, ctl, f, x, &y, &dy, h, atol) {
+        match try_substep::<S, N, P>(ctl, f, x, &y, &dy, h, atol) {
             Ok((y_new, dy_new, ratio)) if ratio <= S::ONE => {
                 x += h;
                 y = y_new;
                 dy = dy_new;
-                h *= factor::<S>(&t.thresholds, ratio);
+                h *= factor::<S>(&P::THRESHOLDS, ratio);
                 if last {
                     return Ok(Advanced { y, dy, h_next: h });
                 }
@@ -293,7 +368,7 @@ fn adaptive<S: Scalar, const N: usize, const M: usize>(
                 } else {
                     StepError::NonFiniteState
                 };
-                h *= factor::<S>(&t.thresholds, ratio).min(S::lit(0.8));
+                h *= factor::<S>(&P::THRESHOLDS, ratio).min(S::lit(0.8));
             }
             Err(e) => {
                 // A stage left the model's domain (an overshooting trial
@@ -305,12 +380,10 @@ fn adaptive<S: Scalar, const N: usize, const M: usize>(
     }
 }
 
-/// One sub-step of size `h` from `(x, y)` with derivative `dy`: the new state,
-/// its derivative (the last stage) and the largest error ratio.
-#[allow(clippy::too_many_arguments)]
+/// One sub-step of size `h`: the new state, its derivative and the largest
+/// error ratio `|err_i| / (atol_i + tol max(|y_i|, |y_i'|))`.
 #[inline]
-fn try_substep<S: Scalar, const N: usize, const M: usize>(
-    t: &Tableau<M>,
+fn try_substep<S: Scalar, const N: usize, P: Pair>(
     ctl: &Control<S>,
     f: &mut impl FnMut(S, &[S; N]) -> Result<[S; N], StepError>,
     x: S,
@@ -319,42 +392,22 @@ fn try_substep<S: Scalar, const N: usize, const M: usize>(
     h: S,
     atol: &[S; N],
 ) -> Result<([S; N], [S; N], S), StepError> {
-    let mut k = [[S::ZERO; N]; M];
-    k[0] = *dy;
-    let mut y_stage = *y;
-    for s in 1..M {
-        y_stage = *y;
-        for (j, kj) in k.iter().enumerate().take(s) {
-            if t.a[s][j].0 != 0 {
-                let ha = h * q::<S>(t.a[s][j]);
-                for i in 0..N {
-                    y_stage[i] += ha * kj[i];
-                }
-            }
-        }
-        k[s] = f(x + h * q::<S>(t.c[s]), &y_stage)?;
-    }
-    // First same as last: the last stage was evaluated at the new solution.
+    let (y_new, dy_new, err) = P::substep(f, x, y, dy, h)?;
     let mut ratio = S::ZERO;
     for i in 0..N {
-        let mut err = S::ZERO;
-        for (s, ks) in k.iter().enumerate() {
-            if t.e[s].0 != 0 {
-                err += q::<S>(t.e[s]) * ks[i];
-            }
-        }
-        let err = (h * err).abs();
-        if err == S::ZERO {
+        let e = err[i].abs();
+        if e == S::ZERO {
             continue;
         }
-        let r = err / (atol[i] + ctl.tol * y[i].abs().max(y_stage[i].abs()));
+        let r = e / (atol[i] + ctl.tol * y[i].abs().max(y_new[i].abs()));
         // NaN compares false: a non-finite estimate counts as a failure.
         if !(r <= ratio) {
             ratio = if r.is_finite() { r } else { S::MAX };
         }
     }
-    Ok((y_stage, k[M - 1], ratio))
+    Ok((y_new, dy_new, ratio))
 }
+
 /// One backward-Euler step `y1 = y0 + len f(len, y1)` for the first component,
 /// with the others (energy-like integrals) following `y1_i = y0_i + len
 /// f_i(len, y1)`, solved by Newton's method on the first component with a
@@ -406,4 +459,120 @@ fn backward_euler<S: Scalar, const N: usize>(
         }
     }
     Err(StepError::NotConverged)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// dz/du = 1 - z^2: plain Bouc-Wen with n = 2, beta = gamma = 1/2 on a
+    /// loading branch with z > 0. Exact solution z = tanh(u + atanh(z0)).
+    fn bw_n2(_: f64, y: &[f64; 1]) -> Result<[f64; 1], StepError> {
+        Ok([1.0 - y[0] * y[0]])
+    }
+
+    fn fixed_steps<P: Pair>(steps: usize) -> f64 {
+        let (z0, len) = (0.1f64, 2.0);
+        let h = len / steps as f64;
+        let mut y = [z0];
+        let mut dy = bw_n2(0.0, &y).unwrap();
+        for i in 0..steps {
+            let (y1, dy1, _) = P::substep(&mut bw_n2, i as f64 * h, &y, &dy, h).unwrap();
+            (y, dy) = (y1, dy1);
+        }
+        (y[0] - (len + z0.atanh()).tanh()).abs()
+    }
+
+    fn observed_order(err: impl Fn(usize) -> f64) -> f64 {
+        (err(16) / err(32)).log2()
+    }
+
+    #[test]
+    fn dormand_prince_converges_with_order_5() {
+        let p = observed_order(fixed_steps::<Dp54>);
+        assert!((p - 5.0).abs() < 0.3, "observed order {p}");
+    }
+
+    #[test]
+    fn bogacki_shampine_converges_with_order_3() {
+        let p = observed_order(fixed_steps::<Bs32>);
+        assert!((p - 3.0).abs() < 0.2, "observed order {p}");
+    }
+
+    #[test]
+    fn backward_euler_converges_with_order_1() {
+        let ctl = Control::opensees(1e-14, 50);
+        let err = |steps: usize| {
+            let (z0, len) = (0.1f64, 2.0);
+            let h = len / steps as f64;
+            let mut y = [z0, 0.0];
+            let mut f = |_: f64, y: &[f64; 2]| Ok([1.0 - y[0] * y[0], y[0]]);
+            for _ in 0..steps {
+                y = advance(&ctl, &mut f, y, [0.0; 2], h, &[1e-12; 2], h)
+                    .unwrap()
+                    .y;
+            }
+            (y[0] - (len + z0.atanh()).tanh()).abs()
+        };
+        let p = observed_order(err);
+        assert!((p - 1.0).abs() < 0.1, "observed order {p}");
+    }
+
+    #[test]
+    fn error_estimates_have_the_orders_the_controller_assumes() {
+        // One step of size h from the same point: the estimate scales as
+        // h^(q) with q = 5 (Dp54) and 3 (Bs32), matching THRESHOLDS.
+        fn est<P: Pair>(h: f64) -> f64 {
+            let y = [0.1];
+            let dy = bw_n2(0.0, &y).unwrap();
+            P::substep(&mut bw_n2, 0.0, &y, &dy, h).unwrap().2[0].abs()
+        }
+        let q54 = (est::<Dp54>(0.1) / est::<Dp54>(0.05)).log2();
+        let q32 = (est::<Bs32>(0.1) / est::<Bs32>(0.05)).log2();
+        assert!((q54 - 5.0).abs() < 0.3, "Dp54 estimate order {q54}");
+        assert!((q32 - 3.0).abs() < 0.3, "Bs32 estimate order {q32}");
+    }
+
+    #[test]
+    fn controller_meets_tolerance_and_reports_budget_exhaustion() {
+        let exact = (2.0 + 0.1f64.atanh()).tanh();
+        for (method, tol) in [(Method::Dp54, 1e-10), (Method::Bs32, 1e-8)] {
+            let ctl = Control {
+                method,
+                tol,
+                max_substeps: 1000,
+            };
+            let mut f = |_: f64, y: &[f64; 1]| bw_n2(0.0, y);
+            let out = advance(&ctl, &mut f, [0.1], [0.99], 2.0, &[tol], 0.0).unwrap();
+            assert!(
+                (out.y[0] - exact).abs() < 20.0 * tol,
+                "{method:?}: {}",
+                out.y[0] - exact
+            );
+            let starved = Control {
+                max_substeps: 2,
+                ..ctl
+            };
+            assert_eq!(
+                advance(&starved, &mut f, [0.1], [0.99], 2.0, &[tol], 0.0).unwrap_err(),
+                StepError::ToleranceNotMet
+            );
+        }
+    }
+
+    #[test]
+    fn a_diverging_solution_is_reported_as_non_finite() {
+        // dz/du = 1 + z^2 blows up at u = pi/2 (a hardening model driven too far).
+        let ctl = Control {
+            method: Method::Dp54,
+            tol: 1e-8,
+            max_substeps: 400,
+        };
+        let mut f = |_: f64, y: &[f64; 1]| Ok([1.0 + y[0] * y[0]]);
+        let err = advance(&ctl, &mut f, [0.0], [1.0], 3.0, &[1e-8], 0.0).unwrap_err();
+        assert!(
+            matches!(err, StepError::NonFiniteState | StepError::ToleranceNotMet),
+            "{err:?}"
+        );
+    }
 }

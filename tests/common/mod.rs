@@ -6,7 +6,9 @@ use std::path::PathBuf;
 
 /// Path of a file in the shared data folder.
 pub fn data(rel: &str) -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../shared/data").join(rel)
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("../shared/data")
+        .join(rel)
 }
 
 /// Reads a numeric CSV with one header line; returns the header and the rows.
@@ -14,20 +16,102 @@ pub fn read_csv(rel: &str) -> (Vec<String>, Vec<Vec<f64>>) {
     let path = data(rel);
     let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
     let mut lines = text.lines().filter(|l| !l.starts_with('#'));
-    let header = lines.next().unwrap().split(',').map(|s| s.trim().to_string()).collect();
+    let header = lines
+        .next()
+        .unwrap()
+        .split(',')
+        .map(|s| s.trim().to_string())
+        .collect();
     let rows = lines
         .filter(|l| !l.trim().is_empty())
-        .map(|l| l.split(',').map(|v| v.trim().parse::<f64>().unwrap_or(f64::NAN)).collect())
+        .map(|l| {
+            l.split(',')
+                .map(|v| v.trim().parse::<f64>().unwrap_or(f64::NAN))
+                .collect()
+        })
         .collect();
     (header, rows)
 }
 
 /// The displacement history of the OpenSees reference cases (mm).
 pub fn reference_history() -> Vec<f64> {
-    read_csv("opensees-reference/history.csv").1.iter().map(|r| r[1]).collect()
+    read_csv("opensees-reference/history.csv")
+        .1
+        .iter()
+        .map(|r| r[1])
+        .collect()
 }
 
 /// One OpenSees reference case: (strain, stress) rows.
 pub fn reference_case(name: &str) -> Vec<(f64, f64)> {
-    read_csv(&format!("opensees-reference/{name}.csv")).1.iter().map(|r| (r[1], r[2])).collect()
+    read_csv(&format!("opensees-reference/{name}.csv"))
+        .1
+        .iter()
+        .map(|r| (r[1], r[2]))
+        .collect()
+}
+
+/// In-place radix-2 complex FFT (`inverse` scales by 1/n). Length must be a
+/// power of two. Used to interpolate band-limited periodic test signals.
+pub fn fft(re: &mut [f64], im: &mut [f64], inverse: bool) {
+    let n = re.len();
+    assert!(n.is_power_of_two() && im.len() == n);
+    let mut j = 0;
+    for i in 1..n {
+        let mut bit = n >> 1;
+        while j & bit != 0 {
+            j ^= bit;
+            bit >>= 1;
+        }
+        j |= bit;
+        if i < j {
+            re.swap(i, j);
+            im.swap(i, j);
+        }
+    }
+    let sign = if inverse { 1.0 } else { -1.0 };
+    let mut len = 2;
+    while len <= n {
+        let ang = sign * 2.0 * std::f64::consts::PI / len as f64;
+        for start in (0..n).step_by(len) {
+            for k in 0..len / 2 {
+                let (s, c) = (ang * k as f64).sin_cos();
+                let (a, b) = (start + k, start + k + len / 2);
+                let (tr, ti) = (re[b] * c - im[b] * s, re[b] * s + im[b] * c);
+                re[b] = re[a] - tr;
+                im[b] = im[a] - ti;
+                re[a] += tr;
+                im[a] += ti;
+            }
+        }
+        len <<= 1;
+    }
+    if inverse {
+        for v in re.iter_mut().chain(im.iter_mut()) {
+            *v /= n as f64;
+        }
+    }
+}
+
+/// Band-limited interpolation of one period of a periodic real signal by an
+/// integer factor (zero-padding its spectrum).
+pub fn interpolate_periodic(x: &[f64], factor: usize) -> Vec<f64> {
+    let n = x.len();
+    let m = n * factor;
+    let (mut re, mut im) = (x.to_vec(), vec![0.0; n]);
+    fft(&mut re, &mut im, false);
+    let (mut zr, mut zi) = (vec![0.0; m], vec![0.0; m]);
+    for k in 0..n / 2 {
+        zr[k] = re[k];
+        zi[k] = im[k];
+        if k > 0 {
+            zr[m - k] = re[n - k];
+            zi[m - k] = im[n - k];
+        }
+    }
+    // split the Nyquist bin between +n/2 and -n/2
+    zr[n / 2] = re[n / 2] / 2.0;
+    zr[m - n / 2] = re[n / 2] / 2.0;
+    fft(&mut zr, &mut zi, true);
+    zr.iter().map(|v| v * factor as f64).collect()
 }

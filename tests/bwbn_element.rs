@@ -1,0 +1,270 @@
+//! Analytic limits and element-API properties of the BWBN element.
+
+mod common;
+
+use hysteresis::bwbn::{BoucWen, Bwbn, BwbnParams, Control, EffectKind, EffectSet, Method};
+use hysteresis::{Element, StepError};
+
+fn named(set: EffectSet, extra: &[(&str, f64)]) -> BwbnParams<f64> {
+    BwbnParams::from_named(set, |n| {
+        extra
+            .iter()
+            .find(|(k, _)| *k == n)
+            .map(|(_, v)| *v)
+            .or(match n {
+                "k0" => Some(6.0),
+                "alpha" => Some(0.2),
+                "n" => Some(1.2),
+                "beta" => Some(2.0),
+                "gamma" => Some(-1.0),
+                _ => None,
+            })
+    })
+    .unwrap()
+}
+
+/// All four thesis effects at the strength of the OpenSees reference cases.
+fn full() -> BwbnParams<f64> {
+    named(
+        EffectSet::BWBN,
+        &[
+            ("delta_A", 2e-4),
+            ("delta_nu", 5e-4),
+            ("delta_eta", 5e-4),
+            ("zeta0", 0.9),
+            ("p", 0.01),
+            ("q", 0.1),
+            ("psi0", 0.2),
+            ("delta_psi", 5e-4),
+            ("lambda", 0.5),
+            ("energy_limit", 4500.0),
+        ],
+    )
+}
+
+fn drive(el: &mut Bwbn<f64>, history: &[f64]) -> Vec<f64> {
+    history
+        .iter()
+        .map(|&u| {
+            let r = el.set_trial(u).unwrap();
+            el.commit();
+            r.force
+        })
+        .collect()
+}
+
+#[test]
+fn alpha_one_is_linear_elastic() {
+    let p = BwbnParams::plain(BoucWen::new(6.0, 1.0, 1.2, 2.0, -1.0).unwrap());
+    let mut el = Bwbn::new(p);
+    for u in common::reference_history() {
+        let r = el.set_trial(u).unwrap();
+        el.commit();
+        assert!(
+            (r.force - 6.0 * u).abs() <= 1e-12 * (1.0 + u.abs()),
+            "R({u}) = {}",
+            r.force
+        );
+        assert_eq!(r.tangent, 6.0);
+    }
+}
+
+#[test]
+fn z_tends_to_zu_under_monotonic_loading() {
+    // Zu = (A0 / (nu0 (beta + gamma)))^(1/n) (eq. 3.12), also with A0 and nu0 != 1.
+    for (a0, nu0) in [(1.0, 1.0), (1.5, 1.0), (1.0, 0.7), (2.0, 1.3)] {
+        let set = EffectSet::NONE
+            .with(EffectKind::ADegradation)
+            .with(EffectKind::StrengthDegradation);
+        let p = named(set, &[("A0", a0), ("nu0", nu0)]);
+        let zu = (a0 / (nu0 * 1.0f64)).powf(1.0 / 1.2);
+        let mut el = Bwbn::new(p);
+        let mut last = 0.0;
+        for i in 1..=400 {
+            el.set_trial(i as f64 * 0.05).unwrap();
+            el.commit();
+            let z = el.committed().z;
+            assert!(
+                z >= last && z < zu * (1.0 + 1e-12),
+                "z must rise monotonically towards Zu"
+            );
+            last = z;
+        }
+        assert!(
+            (last - zu).abs() < 1e-6 * zu,
+            "A0 {a0}, nu0 {nu0}: z = {last}, Zu = {zu}"
+        );
+        // and the tangent has fallen to the post-yield stiffness alpha k0
+        assert!((el.response().tangent - 1.2).abs() < 1e-5);
+    }
+}
+
+/// The tangent is the derivative of the force with respect to the trial
+/// displacement. The finite differences are taken on a tightly converged
+/// element (tolerance 1e-12), because an adaptive integrator's force is smooth
+/// in the trial displacement only to within its tolerance: at the default
+/// 1e-9, differences over 1e-6 mm would measure that tolerance, not the
+/// tangent.
+#[test]
+fn tangent_matches_finite_differences() {
+    let history = common::reference_history();
+    let tight = Control {
+        method: Method::Dp54,
+        tol: 1e-12,
+        max_substeps: 60_000,
+    };
+    for params in [named(EffectSet::NONE, &[]), full()] {
+        let mut el = Bwbn::new(params);
+        let mut reference = Bwbn::new(params).with_control(tight);
+        let mut checked = 0;
+        for (i, &u) in history.iter().enumerate() {
+            let r = el.set_trial(u).unwrap();
+            reference.set_trial(u).unwrap();
+            if i % 7 == 5 && u != history[i - 1] {
+                let d = 1e-6;
+                let fp = reference.set_trial(u + d).unwrap().force;
+                let fm = reference.set_trial(u - d).unwrap().force;
+                let fd = (fp - fm) / (2.0 * d);
+                assert!(
+                    (fd - r.tangent).abs() <= 1e-6 * r.tangent.abs().max(1.2),
+                    "step {i}: tangent {} vs finite difference {fd}",
+                    r.tangent
+                );
+                reference.set_trial(u).unwrap();
+                checked += 1;
+            }
+            el.commit();
+            reference.commit();
+        }
+        assert!(checked > 500);
+    }
+}
+
+/// Over every closed cycle of the reference history the work done on the
+/// element, the loop area, is positive, and the model's hysteretic energy
+/// never ends a cycle lower than it started.
+#[test]
+fn dissipated_energy_is_never_negative_over_a_closed_cycle() {
+    let history = common::reference_history();
+    for params in [named(EffectSet::NONE, &[]), full()] {
+        let mut el = Bwbn::new(params);
+        let forces = drive(&mut el, &history);
+        let mut el2 = Bwbn::new(params);
+        let energy: Vec<f64> = history
+            .iter()
+            .map(|&u| {
+                el2.set_trial(u).unwrap();
+                el2.commit();
+                el2.committed().energy
+            })
+            .collect();
+        // cycles: 200 steps each, starting at u = 0
+        for c in 0..18 {
+            let (a, b) = (c * 200, (c + 1) * 200);
+            let work: f64 = (a..b)
+                .map(|i| 0.5 * (forces[i] + forces[i + 1]) * (history[i + 1] - history[i]))
+                .sum();
+            assert!(work > 0.0, "cycle {c}: loop area {work}");
+            assert!(energy[b] >= energy[a], "cycle {c}: energy fell");
+        }
+    }
+}
+
+#[test]
+fn a_trial_never_changes_the_committed_state() {
+    let mut el = Bwbn::new(full());
+    drive(&mut el, &[0.5, 1.0, 2.0, 1.5]);
+    let committed = *el.committed();
+    let before = el.response();
+    let a = el.set_trial(3.0).unwrap();
+    assert_eq!(*el.committed(), committed);
+    let b = el.set_trial(-2.0).unwrap();
+    assert_eq!(*el.committed(), committed);
+    el.revert();
+    assert_eq!(el.response(), before);
+    assert_eq!(*el.trial(), committed);
+    // the same trial from the same committed state is bit-identical
+    assert_eq!(el.set_trial(3.0).unwrap(), a);
+    assert_eq!(el.set_trial(-2.0).unwrap(), b);
+    el.commit();
+    assert_eq!(el.displacement(), -2.0);
+    el.reset();
+    assert_eq!(el.displacement(), 0.0);
+    assert_eq!(el.response().force, 0.0);
+    assert!((el.response().tangent - 6.0).abs() < 1e-14);
+}
+
+#[test]
+fn non_finite_input_is_refused_and_leaves_the_state_unchanged() {
+    let mut el = Bwbn::new(full());
+    drive(&mut el, &[0.5, 1.0]);
+    el.set_trial(1.5).unwrap();
+    let (committed, trial, response) = (*el.committed(), *el.trial(), el.response());
+    for bad in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
+        assert_eq!(el.set_trial(bad), Err(StepError::NonFiniteInput));
+        assert_eq!(
+            (*el.committed(), *el.trial(), el.response()),
+            (committed, trial, response)
+        );
+    }
+}
+
+#[test]
+fn a_step_over_budget_fails_without_touching_the_state() {
+    let starved = Control {
+        method: Method::Dp54,
+        tol: 1e-14,
+        max_substeps: 2,
+    };
+    let mut el = Bwbn::new(named(EffectSet::NONE, &[])).with_control(starved);
+    let (committed, response) = (*el.committed(), el.response());
+    assert_eq!(el.set_trial(4.0), Err(StepError::ToleranceNotMet));
+    assert_eq!(
+        (*el.committed(), *el.trial(), el.response()),
+        (committed, committed, response)
+    );
+}
+
+#[test]
+fn energy_beyond_the_validated_range_is_refused() {
+    let set = EffectSet::NONE.with(EffectKind::StrengthDegradation);
+    let p = named(set, &[("delta_nu", -1e-3), ("energy_limit", 50.0)]);
+    let mut el = Bwbn::new(p);
+    let mut failed = None;
+    for u in common::reference_history() {
+        match el.set_trial(u) {
+            Ok(_) => el.commit(),
+            Err(e) => {
+                failed = Some(e);
+                break;
+            }
+        }
+    }
+    assert_eq!(failed, Some(StepError::EnergyOutOfRange));
+    assert!(el.committed().energy <= 50.0);
+}
+
+#[test]
+fn hardening_sets_are_legal_and_diverge_with_an_error_not_a_nan() {
+    // beta + gamma < 0: the Bouc-Wen benchmark's hysteretic spring (per metre).
+    let p = BwbnParams::plain(BoucWen::new(1e5, 0.5, 1.0, 800.0, -1100.0).unwrap());
+    assert_eq!(p.zu(), None);
+    let mut el = Bwbn::new(p);
+    for u in [1e-4, 5e-4, 1e-3, -1e-3] {
+        el.set_trial(u).unwrap();
+        el.commit();
+    }
+    // Loading on: dz/du = 1 + 300 |z|, so z grows like e^(300 u) / 300,
+    // beyond f64's range before u = 3 m. Within the default budget the step
+    // gives up; with a budget large enough to follow it, the state overflows.
+    let committed = *el.committed();
+    assert_eq!(el.set_trial(3.0), Err(StepError::ToleranceNotMet));
+    let patient = Control {
+        method: Method::Dp54,
+        tol: 1e-9,
+        max_substeps: u16::MAX,
+    };
+    let mut el = el.with_control(patient);
+    assert_eq!(el.set_trial(3.0), Err(StepError::NonFiniteState));
+    assert_eq!(*el.committed(), committed);
+}
