@@ -13,6 +13,12 @@
 //! unit mass, see [`Sdof::from_physical`]), so energies are per unit mass as
 //! in eq. 3.8. The forcing is taken as linear between samples, and each sample
 //! interval is integrated with the same error-controlled scheme as the element.
+//!
+//! [`Sdof::step_observed`] adds the observer coupling of thesis eq. 4.6,
+//! `x' = f(x, p, t) + lambda K e(t)` with `e = u_measured - u`, which makes the
+//! simulation track a measured displacement: the homotopy parameter
+//! identification of thesis ch. 4 is built on it, and a controller can use it
+//! as a state estimator.
 
 use super::effects::{At, Effect};
 use super::integrate::{self, Control};
@@ -38,6 +44,17 @@ pub struct SdofState<S> {
     pub energy: S,
     /// Mass-normalised forcing f(t) at `t`.
     pub f: S,
+}
+
+/// Observer gains (thesis eqs 4.6, 4.10): `lambda K1` on the displacement
+/// equation and `lambda K2` on the velocity equation.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct Observer<S> {
+    /// Gain on u' (1/s).
+    pub k_u: S,
+    /// Gain on u'' (1/s^2).
+    pub k_v: S,
 }
 
 /// A BWBN oscillator under a mass-normalised force history (see the
@@ -116,15 +133,7 @@ impl<S: Scalar, X: Effect<S>> Sdof<S, X> {
             return Err(ParamError::new("xi", Rule::Negative));
         }
         let w0 = params.base().k0.sqrt();
-        let zs = params.z_scale();
-        let tol = control.tol;
-        let k_hys = params.base().k0 * (S::ONE - params.base().alpha);
-        let atol = [
-            tol * zs,
-            tol * zs * w0,
-            tol * zs,
-            tol * k_hys.max(S::EPSILON) * zs * zs,
-        ];
+        let atol = Self::atol(&params, &control);
         let mut osc = Sdof {
             params,
             extra,
@@ -137,6 +146,27 @@ impl<S: Scalar, X: Effect<S>> Sdof<S, X> {
         };
         osc.reset();
         Ok(osc)
+    }
+
+    /// Absolute tolerances of u, u', z and energy: `tol` times Zu, w0 Zu, Zu
+    /// and `k_hys Zu^2`.
+    fn atol(params: &BwbnParams<S>, control: &Control<S>) -> [S; 4] {
+        let (zs, tol) = (params.z_scale(), control.tol);
+        let k0 = params.base().k0;
+        let k_hys = k0 * (S::ONE - params.base().alpha);
+        [
+            tol * zs,
+            tol * zs * k0.sqrt(),
+            tol * zs,
+            tol * k_hys.max(S::EPSILON) * zs * zs,
+        ]
+    }
+
+    /// The same oscillator with another integration control (state kept).
+    pub fn with_control(mut self, control: Control<S>) -> Self {
+        self.atol = Self::atol(&self.params, &control);
+        self.control = control;
+        self
     }
 
     /// Back to rest at t = 0 with zero forcing.
@@ -186,6 +216,33 @@ impl<S: Scalar, X: Effect<S>> Sdof<S, X> {
     /// Advances by `dt` with the forcing going linearly from its current value
     /// to `f_next`. On error the state is unchanged.
     pub fn step(&mut self, dt: S, f_next: S) -> Result<SdofState<S>, StepError> {
+        self.advance(dt, f_next, None)
+    }
+
+    /// Like [`step`](Self::step), with the observer coupling of eq. 4.6: the
+    /// measured displacement goes linearly from `u_meas_now` to `u_meas_next`
+    /// over the step and pulls the state with the gains `obs`.
+    pub fn step_observed(
+        &mut self,
+        dt: S,
+        f_next: S,
+        u_meas_now: S,
+        u_meas_next: S,
+        obs: Observer<S>,
+    ) -> Result<SdofState<S>, StepError> {
+        let finite = [u_meas_now, u_meas_next, obs.k_u, obs.k_v];
+        if !finite.iter().all(|v| v.is_finite()) {
+            return Err(StepError::NonFiniteInput);
+        }
+        self.advance(dt, f_next, Some((u_meas_now, u_meas_next, obs)))
+    }
+
+    fn advance(
+        &mut self,
+        dt: S,
+        f_next: S,
+        observed: Option<(S, S, Observer<S>)>,
+    ) -> Result<SdofState<S>, StepError> {
         if !(dt.is_finite() && f_next.is_finite()) || dt <= S::ZERO {
             return Err(StepError::NonFiniteInput);
         }
@@ -203,18 +260,26 @@ impl<S: Scalar, X: Effect<S>> Sdof<S, X> {
             };
             let k = p.stiffness(x, &at);
             let dz = rate::dz_du(p, x, &at)?;
-            Ok([
+            let mut d = [
                 v,
                 f0 + slope * t - two_xi_w0 * v - k.el * u - k.hys * z,
                 v * dz,
                 k.hys * v * z,
-            ])
+            ];
+            if let Some((um0, um1, obs)) = observed {
+                let err = um0 + (um1 - um0) * (t / dt) - u;
+                d[0] += obs.k_u * err;
+                d[1] += obs.k_v * err;
+            }
+            Ok(d)
         };
         let s = &self.state;
         let y0 = [s.u, s.v, s.z, s.energy];
-        let dy0 = match self.dy {
-            Some(dy) => dy,
-            None => rhs(S::ZERO, &y0)?,
+        // With an observer the derivative depends on the measurement, which
+        // a cached derivative did not see.
+        let dy0 = match (self.dy, observed) {
+            (Some(dy), None) => dy,
+            _ => rhs(S::ZERO, &y0)?,
         };
         let end = integrate::advance(&self.control, &mut rhs, y0, dy0, dt, &self.atol, self.h)?;
         if !end.y.iter().chain(end.dy.iter()).all(|v| v.is_finite()) {
@@ -232,7 +297,11 @@ impl<S: Scalar, X: Effect<S>> Sdof<S, X> {
             energy,
             f: f_next,
         };
-        self.dy = Some(end.dy);
+        self.dy = if observed.is_some() {
+            None
+        } else {
+            Some(end.dy)
+        };
         self.h = end.h_next;
         Ok(self.state)
     }

@@ -1,0 +1,169 @@
+//! What is fitted: a record's input and output, how the model is driven, and
+//! simulating a candidate parameter set on it.
+//!
+//! * [`Drive::Displacement`]: quasi-static tests (the RC columns). The imposed
+//!   displacement drives a [`Bwbn`] element; the model predicts the force.
+//! * [`Drive::Force`]: dynamic tests (thesis ch. 4, the Bouc-Wen benchmark).
+//!   The applied force drives the oscillator of eqs 3.13-3.17 ([`Sdof`]); the
+//!   model predicts the displacement.
+
+use hysteresis::bwbn::{Bwbn, BwbnParams, Control, Observer, Sdof};
+use hysteresis::{Element, StepError};
+
+/// How the model is driven by the record.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Drive {
+    /// Input displacement, output force.
+    Displacement,
+    /// Input force, output displacement, sampled every `dt` seconds, on a mass
+    /// `mass` (force unit / (displacement unit / s^2)).
+    Force {
+        /// Sample interval (s).
+        dt: f64,
+        /// Mass in force / (displacement / s^2) (kN s^2/mm for kN and mm).
+        mass: f64,
+    },
+}
+
+/// A record ready for fitting.
+#[derive(Clone, Debug)]
+pub struct Experiment {
+    /// What drives the model: displacement (quasi-static) or force (dynamic).
+    pub input: Vec<f64>,
+    /// What the model must reproduce: force (quasi-static) or displacement.
+    pub output: Vec<f64>,
+    /// How the model is driven.
+    pub drive: Drive,
+}
+
+/// Why a candidate could not be simulated.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum SimError {
+    /// The parameter set was rejected.
+    Params(hysteresis::bwbn::ParamError),
+    /// A step failed at this sample.
+    Step(usize, StepError),
+}
+
+impl std::fmt::Display for SimError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            SimError::Params(e) => write!(f, "invalid parameters: {e}"),
+            SimError::Step(i, e) => write!(f, "step to sample {i} failed: {e}"),
+        }
+    }
+}
+
+impl std::error::Error for SimError {}
+
+/// A model prediction for every sample, with the model's hysteretic energy.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Prediction {
+    /// The predicted output (force or displacement).
+    pub output: Vec<f64>,
+    /// Displacement (measured for displacement drive, predicted for force drive).
+    pub displacement: Vec<f64>,
+    /// Restoring force of the model (for force drive: per unit mass times the
+    /// mass, i.e. in force units).
+    pub force: Vec<f64>,
+    /// Hysteretic energy of the model (eq. 3.8).
+    pub energy: Vec<f64>,
+}
+
+impl Experiment {
+    /// Number of samples.
+    pub fn len(&self) -> usize {
+        self.output.len()
+    }
+
+    /// True when the record has no samples.
+    pub fn is_empty(&self) -> bool {
+        self.output.is_empty()
+    }
+
+    /// The measured displacement history.
+    pub fn displacement(&self) -> &[f64] {
+        match self.drive {
+            Drive::Displacement => &self.input,
+            Drive::Force { .. } => &self.output,
+        }
+    }
+
+    /// The measured force history.
+    pub fn force(&self) -> &[f64] {
+        match self.drive {
+            Drive::Displacement => &self.output,
+            Drive::Force { .. } => &self.input,
+        }
+    }
+
+    /// Simulates the model with `params` (`xi` for force drive) on the record.
+    pub fn simulate(
+        &self,
+        params: &BwbnParams<f64>,
+        xi: f64,
+        control: Control<f64>,
+    ) -> Result<Prediction, SimError> {
+        self.simulate_observed(params, xi, control, None)
+    }
+
+    /// Like [`simulate`](Self::simulate), with the observer coupling of thesis
+    /// eq. 4.6 pulling the model towards the measured displacement (force
+    /// drive only; `None` simulates freely).
+    pub fn simulate_observed(
+        &self,
+        params: &BwbnParams<f64>,
+        xi: f64,
+        control: Control<f64>,
+        observer: Option<Observer<f64>>,
+    ) -> Result<Prediction, SimError> {
+        let n = self.len();
+        let mut out = Prediction {
+            output: Vec::with_capacity(n),
+            displacement: Vec::with_capacity(n),
+            force: Vec::with_capacity(n),
+            energy: Vec::with_capacity(n),
+        };
+        match self.drive {
+            Drive::Displacement => {
+                let mut el = Bwbn::new(*params).with_control(control);
+                for (i, &u) in self.input.iter().enumerate() {
+                    let r = el.set_trial(u).map_err(|e| SimError::Step(i, e))?;
+                    el.commit();
+                    out.output.push(r.force);
+                    out.displacement.push(u);
+                    out.force.push(r.force);
+                    out.energy.push(el.committed().energy);
+                }
+            }
+            Drive::Force { dt, mass } => {
+                let mut osc = Sdof::from_physical(*params, mass, xi)
+                    .map_err(SimError::Params)?
+                    .with_control(control);
+                let first = self.input.first().copied().unwrap_or(0.0);
+                osc.set_forcing(first / mass)
+                    .map_err(|e| SimError::Step(0, e))?;
+                let record = |osc: &Sdof<f64>, out: &mut Prediction| {
+                    let s = osc.state();
+                    out.output.push(s.u);
+                    out.displacement.push(s.u);
+                    out.force.push(osc.restoring() * mass);
+                    out.energy.push(s.energy * mass);
+                };
+                record(&osc, &mut out);
+                for i in 1..n {
+                    let f = self.input[i] / mass;
+                    let step = match observer {
+                        Some(obs) => {
+                            osc.step_observed(dt, f, self.output[i - 1], self.output[i], obs)
+                        }
+                        None => osc.step(dt, f),
+                    };
+                    step.map_err(|e| SimError::Step(i, e))?;
+                    record(&osc, &mut out);
+                }
+            }
+        }
+        Ok(out)
+    }
+}

@@ -1,0 +1,10 @@
+//! Fitting model parameters to lab records (thesis ch. 3 and 4).
+
+pub mod experiment;
+pub mod homotopy;
+pub mod identifiability;
+pub mod lsq;
+pub mod objectives;
+pub mod parametrization;
+pub mod problem;
+pub mod sensitivity;

@@ -1,0 +1,338 @@
+//! The optimiser's variables: which parameters are free, in what normalised
+//! units, within what bounds, and how they become a model parameter set.
+//!
+//! The Bouc-Wen model is covariant under a change of units (displacement by
+//! `D`, force by `F`): `k0 -> k0 D/F`, `beta, gamma -> beta D^n`, pinching
+//! widths `psi -> psi / D`, degradation rates `delta -> delta F D`. Fitting
+//! therefore works on parameters normalised by reference scales of the record
+//! (the displacement at which the initial stiffness reaches the peak force,
+//! and the peak force), so that one set of default bounds (the `fit_range`s of
+//! the core's [`ParamSpec`]s) fits columns in mm and kN as well as the Bouc-Wen
+//! benchmark in m and N. Results are converted back before they are reported.
+
+use super::experiment::{Drive, Experiment};
+use crate::model::ModelSpec;
+use anyhow::{bail, Result};
+use hysteresis::bwbn::{specs, BwbnParams, ParamError, ParamSpec, Unit};
+use std::collections::BTreeMap;
+
+/// Reference scales of a record.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Scales {
+    /// Displacement scale D: about the yield displacement.
+    pub disp: f64,
+    /// Force scale F: the peak force.
+    pub force: f64,
+    /// Energy scale the degradation rates refer to: `F D` (per unit mass for
+    /// force drive, where the model's energy is per unit mass).
+    pub energy: f64,
+}
+
+impl Scales {
+    /// Scales from the record: F = peak |force|; D = F / k_est with k_est the
+    /// initial stiffness estimated from the first loading branch (quasi-static)
+    /// or the ratio of RMS force to RMS displacement (dynamic).
+    pub fn of(exp: &Experiment) -> Scales {
+        let (u, f) = (exp.displacement(), exp.force());
+        let force = f
+            .iter()
+            .fold(0.0f64, |a, v| a.max(v.abs()))
+            .max(f64::MIN_POSITIVE);
+        let k = initial_stiffness(exp).max(f64::MIN_POSITIVE);
+        let disp = match exp.drive {
+            Drive::Displacement => force / k,
+            Drive::Force { .. } => rms(u).max(f64::MIN_POSITIVE),
+        };
+        let energy = match exp.drive {
+            Drive::Displacement => force * disp,
+            Drive::Force { mass, .. } => force * disp / mass,
+        };
+        Scales {
+            disp,
+            force,
+            energy,
+        }
+    }
+
+    /// Stiffness scale F/D.
+    pub fn stiffness(&self) -> f64 {
+        self.force / self.disp
+    }
+
+    /// Factor from normalised to physical value for a parameter of unit
+    /// `unit` (for `DisplacementPowMinusN`, at exponent `n`).
+    pub fn factor(&self, unit: Unit, n: f64) -> f64 {
+        match unit {
+            Unit::Dimensionless => 1.0,
+            Unit::Stiffness => self.stiffness(),
+            Unit::Displacement => self.disp,
+            Unit::DisplacementPowMinusN => self.disp.powf(-n),
+            Unit::PerEnergy => 1.0 / self.energy,
+            Unit::DisplacementPerEnergy => self.disp / self.energy,
+            Unit::Energy => self.energy,
+        }
+    }
+}
+
+fn rms(x: &[f64]) -> f64 {
+    (x.iter().map(|v| v * v).sum::<f64>() / x.len().max(1) as f64).sqrt()
+}
+
+/// Initial stiffness estimate: for displacement drive, the least-squares
+/// slope of force against displacement over the first loading branch up to
+/// 40% of the peak force (robust to displacement noise); for force drive,
+/// RMS(force)/RMS(displacement).
+pub fn initial_stiffness(exp: &Experiment) -> f64 {
+    let (u, f) = (exp.displacement(), exp.force());
+    if let Drive::Force { .. } = exp.drive {
+        return rms(f) / rms(u).max(f64::MIN_POSITIVE);
+    }
+    let peak = f.iter().fold(0.0f64, |a, v| a.max(v.abs()));
+    let (mut suu, mut suf, mut su, mut sf, mut n) = (0.0, 0.0, 0.0, 0.0, 0.0f64);
+    for (&ui, &fi) in u.iter().zip(f) {
+        if fi.abs() > 0.4 * peak {
+            break;
+        }
+        suu += ui * ui;
+        suf += ui * fi;
+        su += ui;
+        sf += fi;
+        n += 1.0;
+    }
+    let var = suu - su * su / n.max(1.0);
+    let slope = if n >= 3.0 && var > 0.0 {
+        (suf - su * sf / n) / var
+    } else {
+        0.0
+    };
+    if slope > 0.0 && slope.is_finite() {
+        slope
+    } else {
+        // fall back to the secant stiffness at the peak force
+        let i = f
+            .iter()
+            .enumerate()
+            .fold(0, |b, (i, v)| if v.abs() > f[b].abs() { i } else { b });
+        (f[i] / u[i]).abs()
+    }
+}
+
+/// The viscous damping ratio of force-driven fits (eq. 3.3).
+pub const XI: ParamSpec = ParamSpec {
+    name: "xi",
+    symbol: "ξ",
+    equation: "3.3",
+    off: 0.05,
+    unit: Unit::Dimensionless,
+    fit_range: (0.0, 0.3),
+    doc: "viscous damping ratio",
+};
+
+/// One free variable.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Free {
+    /// Its spec.
+    pub spec: ParamSpec,
+    /// Lower bound, normalised.
+    pub lo: f64,
+    /// Upper bound, normalised.
+    pub hi: f64,
+}
+
+/// The mapping between the optimiser's normalised vector and parameters.
+#[derive(Clone, Debug)]
+pub struct Parametrization {
+    /// The model.
+    pub spec: ModelSpec,
+    /// Free parameters in the order of the vector.
+    pub free: Vec<Free>,
+    /// Fixed parameters, physical values.
+    pub fixed: BTreeMap<&'static str, f64>,
+    /// Reference scales of the record.
+    pub scales: Scales,
+    /// Whether `xi` belongs to the model (force drive).
+    pub dynamic: bool,
+    /// The energy range the parameter sets are validated for (physical).
+    pub energy_limit: Option<f64>,
+}
+
+impl Parametrization {
+    /// All parameters of `spec` free (minus `fixed`, physical values), with
+    /// default bounds.
+    pub fn new(spec: ModelSpec, exp: &Experiment, fixed: &[(String, f64)]) -> Result<Self> {
+        let dynamic = matches!(exp.drive, Drive::Force { .. });
+        let all: Vec<ParamSpec> = specs(spec.effects)
+            .copied()
+            .chain(dynamic.then_some(XI))
+            .collect();
+        let mut fixed_map = BTreeMap::new();
+        for (name, v) in fixed {
+            let Some(s) = all.iter().find(|s| s.name == name.as_str()) else {
+                let names: Vec<_> = all.iter().map(|s| s.name).collect();
+                bail!(
+                    "cannot fix `{name}`: model {spec} has no such parameter (it has {})",
+                    names.join(", ")
+                );
+            };
+            if !v.is_finite() {
+                bail!("cannot fix `{name}` to {v}: not a finite number");
+            }
+            fixed_map.insert(s.name, *v);
+        }
+        let free = all
+            .iter()
+            .filter(|s| !fixed_map.contains_key(s.name))
+            .map(|s| Free {
+                spec: *s,
+                lo: s.fit_range.0 as f64,
+                hi: s.fit_range.1 as f64,
+            })
+            .collect();
+        Ok(Parametrization {
+            spec,
+            free,
+            fixed: fixed_map,
+            scales: Scales::of(exp),
+            dynamic,
+            energy_limit: None,
+        })
+    }
+
+    /// Number of free variables.
+    pub fn dim(&self) -> usize {
+        self.free.len()
+    }
+
+    /// Names of the free variables.
+    pub fn names(&self) -> Vec<&'static str> {
+        self.free.iter().map(|f| f.spec.name).collect()
+    }
+
+    /// Lower and upper bounds (normalised).
+    pub fn bounds(&self) -> (Vec<f64>, Vec<f64>) {
+        (
+            self.free.iter().map(|f| f.lo).collect(),
+            self.free.iter().map(|f| f.hi).collect(),
+        )
+    }
+
+    fn n_of(&self, x: &[f64]) -> f64 {
+        self.value_of("n", x).unwrap_or(1.0)
+    }
+
+    fn value_of(&self, name: &str, x: &[f64]) -> Option<f64> {
+        if let Some(v) = self.fixed.get(name) {
+            return Some(*v);
+        }
+        let i = self.free.iter().position(|f| f.spec.name == name)?;
+        // `n` is dimensionless, so its physical value is its normalised value.
+        Some(x[i] * self.scales.factor(self.free[i].spec.unit, 1.0))
+    }
+
+    /// Physical values of every parameter (free and fixed) at `x`.
+    pub fn physical(&self, x: &[f64]) -> BTreeMap<&'static str, f64> {
+        let n = self.n_of(x);
+        let mut out = self.fixed.clone();
+        for (f, &v) in self.free.iter().zip(x) {
+            out.insert(f.spec.name, v * self.scales.factor(f.spec.unit, n));
+        }
+        out
+    }
+
+    /// The normalised vector of physical values `values` (missing free
+    /// parameters take their off values).
+    pub fn normalise(&self, values: &BTreeMap<&str, f64>) -> Vec<f64> {
+        let n = values
+            .get("n")
+            .copied()
+            .or_else(|| self.fixed.get("n").copied())
+            .unwrap_or(1.0);
+        self.free
+            .iter()
+            .map(|f| match values.get(f.spec.name) {
+                Some(v) => v / self.scales.factor(f.spec.unit, n),
+                None => f.spec.off as f64,
+            })
+            .collect()
+    }
+
+    /// A starting point: the off values of every free parameter, with k0 at
+    /// the estimated initial stiffness (normalised 1 for displacement drive)
+    /// and beta = gamma = 1/2 (Zu at the displacement scale).
+    pub fn default_start(&self) -> Vec<f64> {
+        self.free
+            .iter()
+            .map(|f| {
+                let v = match f.spec.name {
+                    "k0" => 1.0,
+                    "n" => 1.5,
+                    _ => f.spec.off as f64,
+                };
+                v.clamp(f.lo, f.hi)
+            })
+            .collect()
+    }
+
+    /// The model parameter set (and xi) at `x`.
+    pub fn build(&self, x: &[f64]) -> Result<(BwbnParams<f64>, f64), ParamError> {
+        let values = self.physical(x);
+        let limit = self.energy_limit;
+        let params = BwbnParams::from_named(self.spec.effects, |name| {
+            if name == hysteresis::bwbn::ENERGY_LIMIT {
+                return limit;
+            }
+            values.get(name).copied()
+        })?;
+        Ok((params, values.get("xi").copied().unwrap_or(0.0)))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn ramp_record() -> Experiment {
+        // elastic-plastic-ish: k = 6 up to 1 mm, then flat at 6 kN
+        let u: Vec<f64> = (0..100).map(|i| i as f64 * 0.05).collect();
+        let f = u.iter().map(|&x| 6.0 * x.min(1.0)).collect();
+        Experiment {
+            input: u,
+            output: f,
+            drive: Drive::Displacement,
+        }
+    }
+
+    #[test]
+    fn scales_follow_the_record() {
+        let s = Scales::of(&ramp_record());
+        assert!((s.force - 6.0).abs() < 1e-12);
+        assert!((s.stiffness() - 6.0).abs() < 1e-9, "k = {}", s.stiffness());
+        assert!((s.disp - 1.0).abs() < 1e-9);
+    }
+
+    #[test]
+    fn normalisation_round_trips_through_physical_values() {
+        let exp = ramp_record();
+        let spec = ModelSpec::parse("bwbn").unwrap();
+        let p = Parametrization::new(spec, &exp, &[("q".into(), 0.1)]).unwrap();
+        assert_eq!(p.dim(), 16);
+        let x: Vec<f64> = p.free.iter().map(|f| 0.5 * (f.lo + f.hi)).collect();
+        let phys = p.physical(&x);
+        assert_eq!(phys["q"], 0.1);
+        let back = p.normalise(&phys);
+        for (a, b) in x.iter().zip(&back) {
+            assert!((a - b).abs() < 1e-12 * a.abs().max(1.0));
+        }
+    }
+
+    #[test]
+    fn unknown_fixed_parameters_are_named() {
+        let e = Parametrization::new(ModelSpec::BW, &ramp_record(), &[("zeta0".into(), 0.5)])
+            .unwrap_err();
+        assert!(
+            e.to_string()
+                .contains("cannot fix `zeta0`: model bw has no such parameter"),
+            "{e}"
+        );
+    }
+}
