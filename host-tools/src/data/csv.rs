@@ -227,7 +227,7 @@ impl Header<'_> {
                     NameRole::Specific(Role::Step) => (Role::Step, Source::Header),
                     NameRole::Specific(r) => {
                         let q = role_quantity(r).unwrap_or(Quantity::Length);
-                        return Err(unknown_unit(self.file, *at, i, h, t, &q.known_symbols(), q));
+                        return Err(unknown_unit(self.file, *at, i, h, t, q));
                     }
                     NameRole::Generic => {
                         let known = format!(
@@ -278,9 +278,7 @@ impl Header<'_> {
             if let Some(q) = role_quantity(role) {
                 let u = match (unit, &unit_text) {
                     (Some(u), _) => u,
-                    (None, Some((t, at))) => {
-                        return Err(unknown_unit(self.file, *at, i, h, t, &q.known_symbols(), q))
-                    }
+                    (None, Some((t, at))) => return Err(unknown_unit(self.file, *at, i, h, t, q)),
                     (None, None) => {
                         let u = q.canonical();
                         notices.push(Notice::AssumedUnit {
@@ -372,7 +370,6 @@ fn unknown_unit(
     i: usize,
     h: &HeaderField,
     unit: &str,
-    known: &str,
     q: Quantity,
 ) -> DataError {
     DataError::at(
@@ -380,8 +377,9 @@ fn unknown_unit(
         line,
         i + 1,
         format!(
-            "unknown unit '{unit}' for column '{}': expected a {q} unit ({known})",
-            h.text
+            "unknown unit '{unit}' for column '{}': expected a {q} unit ({})",
+            h.text,
+            q.known_symbols()
         ),
     )
 }

@@ -267,7 +267,7 @@ pub(crate) fn parse(file: &Path, text: &str, options: &ReadOptions) -> Result<Re
             format!("invalid JSON: {e}"),
         )
     })?;
-    let Some(layout) = JsonLayout::detect(&root) else {
+    let (Some(layout), Some(obj)) = (JsonLayout::detect(&root), root.as_object()) else {
         let keys = root
             .as_object()
             .map(|o| {
@@ -285,12 +285,11 @@ pub(crate) fn parse(file: &Path, text: &str, options: &ReadOptions) -> Result<Re
             ),
         ));
     };
-    let obj = root.as_object().cloned().unwrap_or_default();
     let raw = match layout {
-        JsonLayout::PeerSpd => peer(file, &obj)?,
-        JsonLayout::FastenerConnection => fastener(file, &obj)?,
-        JsonLayout::FrictionDamper => friction(file, &obj)?,
-        JsonLayout::SimCenterBrace => brace(file, &obj)?,
+        JsonLayout::PeerSpd => peer(file, obj)?,
+        JsonLayout::FastenerConnection => fastener(file, obj)?,
+        JsonLayout::FrictionDamper => friction(file, obj)?,
+        JsonLayout::SimCenterBrace => brace(file, obj)?,
     };
     let n = raw.disp.2.len();
     if raw.force.2.len() != n {

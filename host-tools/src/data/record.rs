@@ -283,7 +283,9 @@ impl Record {
         Ok(())
     }
 
-    pub(crate) fn with_comments(mut self, comments: Vec<String>) -> Self {
+    /// The record with these comment lines (written as `#` lines by
+    /// [`write_record`](super::write_record)).
+    pub fn with_comments(mut self, comments: Vec<String>) -> Self {
         self.comments = comments;
         self
     }
