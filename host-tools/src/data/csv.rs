@@ -1,0 +1,638 @@
+//! The CSV reader: `#` comment lines, one header line naming the columns
+//! (with units), an optional units line, then one sample a line.
+//!
+//! Rules, in order:
+//! 1. Lines starting with `#` (after white space) are comments, kept in the
+//!    record; blank lines are skipped. A UTF-8 byte-order mark is ignored.
+//! 2. The first other line is the header. Its fields are split on `,`; see
+//!    [`columns`](super::columns) for how names and units are read.
+//! 3. If the next line has no number and at least one known unit, it is a
+//!    units line (as in `kN,mm` under `Lead Actuator Force,Lead Actuator
+//!    Displacment`): its units apply to the columns whose header has none.
+//! 4. A column's role is the role given in the read options; else the role of
+//!    its unit's quantity (a length unit makes a displacement, a force unit a
+//!    force, a time unit a time), which must agree with a role name; else the
+//!    role of its name. Columns with no role are not read (reported).
+//! 5. Every data line must have as many fields as the header; the fields of
+//!    the columns read must be finite numbers; time and step must increase.
+
+use super::columns::{parse_header_field, role_of_name, unquote, HeaderField, NameRole, Role};
+use super::columns::{DISPLACEMENT_NAMES, FORCE_NAMES};
+use super::error::DataError;
+use super::read::{ColumnRef, ReadOptions};
+use super::record::{Channel, Notice, Record, Series};
+use super::units::{Quantity, Unit};
+use std::path::Path;
+
+/// A column the record reads, with the unit its values are converted from.
+#[derive(Clone, Debug)]
+struct Col {
+    index: usize,
+    text: String,
+    /// `None` for a step column, read as written.
+    unit: Option<Unit>,
+}
+
+/// Which column plays which role.
+#[derive(Debug, Default)]
+struct Plan {
+    time: Option<Col>,
+    step: Option<Col>,
+    displacement: Option<Col>,
+    force: Option<Col>,
+}
+
+/// How a column got its role (for ambiguity and supersession).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Source {
+    Options,
+    Header,
+}
+
+fn quantity_role(q: Quantity) -> Role {
+    match q {
+        Quantity::Length => Role::Displacement,
+        Quantity::Force => Role::Force,
+        Quantity::Time => Role::Time,
+    }
+}
+
+fn role_quantity(r: Role) -> Option<Quantity> {
+    match r {
+        Role::Time => Some(Quantity::Time),
+        Role::Displacement => Some(Quantity::Length),
+        Role::Force => Some(Quantity::Force),
+        Role::Step | Role::Ignore => None,
+    }
+}
+
+fn is_units_line(fields: &[&str]) -> bool {
+    let fields: Vec<&str> = fields.iter().map(|f| unquote(f)).collect();
+    fields
+        .iter()
+        .all(|f| f.is_empty() || f.parse::<f64>().is_err())
+        && fields.iter().any(|f| Unit::parse(f).is_some())
+}
+
+fn column_list(header: &[HeaderField]) -> String {
+    let names: Vec<String> = header.iter().map(|h| format!("'{}'", h.text)).collect();
+    names.join(", ")
+}
+
+/// Finds the column an option names.
+fn find_column(
+    file: &Path,
+    line: usize,
+    header: &[HeaderField],
+    r: &ColumnRef,
+) -> Result<usize, DataError> {
+    match r {
+        ColumnRef::Number(k) if (1..=header.len()).contains(k) => Ok(k - 1),
+        ColumnRef::Number(k) => Err(DataError::at(
+            file,
+            line,
+            1,
+            format!(
+                "read options name column number {k}, but the header has {} columns",
+                header.len()
+            ),
+        )),
+        ColumnRef::Name(n) => {
+            let n = n.trim();
+            let hits: Vec<usize> = (0..header.len())
+                .filter(|&i| header[i].text == n || header[i].name == n)
+                .collect();
+            match hits.as_slice() {
+                [i] => Ok(*i),
+                [] => Err(DataError::at(
+                    file,
+                    line,
+                    1,
+                    format!(
+                        "read options name column '{n}', which is not in the header (columns: {})",
+                        column_list(header)
+                    ),
+                )),
+                [a, b, ..] => Err(DataError::at(
+                    file,
+                    line,
+                    b + 1,
+                    format!(
+                        "read options name column '{n}', which matches columns {} and {}: use its number",
+                        a + 1,
+                        b + 1
+                    ),
+                )),
+            }
+        }
+    }
+}
+
+struct Header<'a> {
+    file: &'a Path,
+    line: usize,
+    fields: Vec<HeaderField>,
+    /// Units line: its line number and fields.
+    units: Option<(usize, Vec<String>)>,
+}
+
+impl Header<'_> {
+    fn err(&self, column: usize, message: String) -> DataError {
+        DataError::at(self.file, self.line, column, message)
+    }
+
+    /// The unit text of column `i` and the line/column it was found at.
+    fn unit_text(&self, i: usize) -> Result<Option<(String, usize)>, DataError> {
+        let from_header = self.fields[i].unit.clone();
+        let from_units = self
+            .units
+            .as_ref()
+            .map(|(_, u)| u[i].clone())
+            .filter(|u| !u.is_empty());
+        match (from_header, from_units) {
+            (Some(h), Some(u)) if h != u => Err(DataError::at(
+                self.file,
+                self.units.as_ref().map_or(self.line, |(l, _)| *l),
+                i + 1,
+                format!(
+                    "column '{}' has unit '{h}' in the header and '{u}' in the units line",
+                    self.fields[i].text
+                ),
+            )),
+            (Some(h), _) => Ok(Some((h, self.line))),
+            (None, Some(u)) => Ok(Some((
+                u,
+                self.units.as_ref().map_or(self.line, |(l, _)| *l),
+            ))),
+            (None, None) => Ok(None),
+        }
+    }
+
+    /// Decides the role and unit of every column.
+    fn plan(
+        &self,
+        options: &ReadOptions,
+        notices: &mut Vec<Notice>,
+        ignored: &mut Vec<String>,
+    ) -> Result<Plan, DataError> {
+        let n = self.fields.len();
+        let mut role_opt: Vec<Option<Role>> = vec![None; n];
+        for (r, role) in &options.roles {
+            let i = find_column(self.file, self.line, &self.fields, r)?;
+            if role_opt[i].is_some_and(|old| old != *role) {
+                return Err(self.err(
+                    i + 1,
+                    format!(
+                        "read options give column '{}' two roles",
+                        self.fields[i].text
+                    ),
+                ));
+            }
+            role_opt[i] = Some(*role);
+        }
+        let mut unit_opt: Vec<Option<Unit>> = vec![None; n];
+        for (r, unit) in &options.units {
+            let i = find_column(self.file, self.line, &self.fields, r)?;
+            unit_opt[i] = Some(*unit);
+        }
+
+        // Role of each column and how it was found.
+        let mut roles: Vec<Option<(Role, Source)>> = vec![None; n];
+        let mut units: Vec<Option<Unit>> = vec![None; n];
+        for i in 0..n {
+            let h = &self.fields[i];
+            let name_role = role_of_name(&h.name);
+            let unit_text = self.unit_text(i)?;
+            let parsed = unit_text.as_ref().and_then(|(t, _)| Unit::parse(t));
+            let unit = unit_opt[i].or(parsed);
+            let (role, source) = if let Some(r) = role_opt[i] {
+                (r, Source::Options)
+            } else if let Some(u) = unit {
+                let r = quantity_role(u.quantity());
+                if let NameRole::Specific(named) = name_role {
+                    if named != r {
+                        return Err(self.err(
+                            i + 1,
+                            format!(
+                                "column '{}' is named like {named} but its unit {u} is a {} unit",
+                                h.text,
+                                u.quantity()
+                            ),
+                        ));
+                    }
+                }
+                (r, Source::Header)
+            } else if let Some((t, at)) = &unit_text {
+                match name_role {
+                    NameRole::Specific(Role::Step) => (Role::Step, Source::Header),
+                    NameRole::Specific(r) => {
+                        let q = role_quantity(r).unwrap_or(Quantity::Length);
+                        return Err(unknown_unit(self.file, *at, i, h, t, q));
+                    }
+                    NameRole::Generic => {
+                        let known = format!(
+                            "{}; {}",
+                            Quantity::Length.known_symbols(),
+                            Quantity::Force.known_symbols()
+                        );
+                        return Err(DataError::at(
+                            self.file,
+                            *at,
+                            i + 1,
+                            format!(
+                                "unknown unit '{t}' for column '{}': expected a length or force unit ({known})",
+                                h.text
+                            ),
+                        ));
+                    }
+                    NameRole::Unknown => {
+                        ignored.push(format!("'{}' (unknown unit '{t}')", h.text));
+                        continue;
+                    }
+                }
+            } else {
+                match name_role {
+                    NameRole::Specific(r) => (r, Source::Header),
+                    NameRole::Generic => {
+                        ignored.push(format!(
+                            "'{}' (no unit: u, x, y are read only with a length or force unit)",
+                            h.text
+                        ));
+                        continue;
+                    }
+                    NameRole::Unknown => {
+                        if h.text.is_empty() {
+                            ignored.push(format!("column {} (unnamed)", i + 1));
+                        } else {
+                            ignored.push(format!("'{}'", h.text));
+                        }
+                        continue;
+                    }
+                }
+            };
+            if role == Role::Ignore {
+                ignored.push(format!("'{}' (read options)", h.text));
+                continue;
+            }
+            // The unit this role needs.
+            if let Some(q) = role_quantity(role) {
+                let u = match (unit, &unit_text) {
+                    (Some(u), _) => u,
+                    (None, Some((t, at))) => return Err(unknown_unit(self.file, *at, i, h, t, q)),
+                    (None, None) => {
+                        let u = q.canonical();
+                        notices.push(Notice::AssumedUnit {
+                            column: h.text.clone(),
+                            unit: u,
+                        });
+                        u
+                    }
+                };
+                if u.quantity() != q {
+                    return Err(self.err(
+                        i + 1,
+                        format!(
+                            "column '{}' has the role {role}, which needs a {q} unit, but its unit {u} is a {} unit",
+                            h.text,
+                            u.quantity()
+                        ),
+                    ));
+                }
+                if let (Some(o), Some((t, _))) = (unit_opt[i], &unit_text) {
+                    if Unit::parse(t) != Some(o) {
+                        notices.push(Notice::OverriddenUnit {
+                            column: h.text.clone(),
+                            file_unit: t.clone(),
+                            unit: o,
+                        });
+                    }
+                }
+                units[i] = Some(u);
+            }
+            roles[i] = Some((role, source));
+        }
+
+        // A role given by the options is taken by no other column.
+        for i in 0..n {
+            if let Some((r, Source::Header)) = roles[i] {
+                let given = (0..n).any(|j| roles[j] == Some((r, Source::Options)));
+                if given {
+                    ignored.push(format!(
+                        "'{}' (the role {r} was given to another column)",
+                        self.fields[i].text
+                    ));
+                    roles[i] = None;
+                }
+            }
+        }
+
+        let mut plan = Plan::default();
+        for role in [Role::Time, Role::Step, Role::Displacement, Role::Force] {
+            let cols: Vec<usize> = (0..n)
+                .filter(|&i| roles[i].is_some_and(|(r, _)| r == role))
+                .collect();
+            let slot = match role {
+                Role::Time => &mut plan.time,
+                Role::Step => &mut plan.step,
+                Role::Displacement => &mut plan.displacement,
+                _ => &mut plan.force,
+            };
+            match cols.as_slice() {
+                [] => {}
+                [i] => {
+                    *slot = Some(Col {
+                        index: *i,
+                        text: self.fields[*i].text.clone(),
+                        unit: units[*i],
+                    })
+                }
+                [a, b, ..] => {
+                    return Err(self.err(
+                        b + 1,
+                        format!(
+                            "columns '{}' ({}) and '{}' ({}) both look like {role}: choose one with the read options",
+                            self.fields[*a].text,
+                            a + 1,
+                            self.fields[*b].text,
+                            b + 1
+                        ),
+                    ))
+                }
+            }
+        }
+        Ok(plan)
+    }
+}
+
+fn unknown_unit(
+    file: &Path,
+    line: usize,
+    i: usize,
+    h: &HeaderField,
+    unit: &str,
+    q: Quantity,
+) -> DataError {
+    DataError::at(
+        file,
+        line,
+        i + 1,
+        format!(
+            "unknown unit '{unit}' for column '{}': expected a {q} unit ({})",
+            h.text,
+            q.known_symbols()
+        ),
+    )
+}
+
+fn missing_column(file: &Path, line: usize, channel: Channel, header: &[HeaderField]) -> DataError {
+    let names = match channel {
+        Channel::Displacement => DISPLACEMENT_NAMES.to_vec(),
+        Channel::Force => FORCE_NAMES.to_vec(),
+    };
+    DataError::at(
+        file,
+        line,
+        1,
+        format!(
+            "expected a {channel} column (named {}, or with a {} unit, or given the role in the read options), found columns {}",
+            names.join(", "),
+            channel.quantity(),
+            column_list(header)
+        ),
+    )
+}
+
+/// A column's values as they are parsed, with the previous text for the
+/// increasing-order checks.
+struct Reader {
+    col: Col,
+    values: Vec<f64>,
+    increasing: bool,
+    last: Option<(f64, usize, String)>,
+}
+
+impl Reader {
+    fn new(col: Col, increasing: bool) -> Self {
+        Reader {
+            col,
+            values: Vec::new(),
+            increasing,
+            last: None,
+        }
+    }
+
+    fn take(&mut self, file: &Path, line: usize, fields: &[&str]) -> Result<(), DataError> {
+        let column = self.col.index + 1;
+        let text = fields[self.col.index].trim();
+        let value: f64 = text.parse().map_err(|_| {
+            DataError::at(
+                file,
+                line,
+                column,
+                format!(
+                    "expected a number for column '{}', found '{text}'",
+                    self.col.text
+                ),
+            )
+        })?;
+        if !value.is_finite() {
+            return Err(DataError::at(
+                file,
+                line,
+                column,
+                format!(
+                    "expected a finite number for column '{}', found '{text}'",
+                    self.col.text
+                ),
+            ));
+        }
+        let value = self.col.unit.map_or(value, |u| u.to_canonical(value));
+        if self.increasing {
+            if let Some((prev, prev_line, prev_text)) = &self.last {
+                if value <= *prev {
+                    return Err(DataError::at(
+                        file,
+                        line,
+                        column,
+                        format!(
+                            "expected '{}' to increase after '{prev_text}' on line {prev_line}, found '{text}'",
+                            self.col.text
+                        ),
+                    ));
+                }
+            }
+            self.last = Some((value, line, text.to_string()));
+        }
+        self.values.push(value);
+        Ok(())
+    }
+
+    fn series(self, quantity: Quantity) -> Series {
+        Series {
+            name: self.col.text,
+            unit: self.col.unit.unwrap_or(quantity.canonical()),
+            values: self.values,
+        }
+    }
+}
+
+/// Parses CSV text; `file` names it in messages.
+pub(crate) fn parse(file: &Path, text: &str, options: &ReadOptions) -> Result<Record, DataError> {
+    let sample_rate = options.checked_sample_rate(file)?;
+    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
+    let mut comments = Vec::new();
+    let mut content: Vec<(usize, &str)> = Vec::new();
+    let mut n_lines = 0;
+    for (k, line) in text.lines().enumerate() {
+        n_lines = k + 1;
+        let t = line.trim();
+        if let Some(c) = t.strip_prefix('#') {
+            comments.push(c.trim().to_string());
+        } else if !t.is_empty() {
+            content.push((k + 1, line));
+        }
+    }
+    let Some(&(header_line, header_text)) = content.first() else {
+        return Err(if comments.is_empty() {
+            DataError::at(
+                file,
+                1,
+                1,
+                "empty file: expected a header line naming the columns",
+            )
+        } else {
+            DataError::at(
+                file,
+                n_lines + 1,
+                1,
+                "expected a header line naming the columns, found end of file",
+            )
+        });
+    };
+    let fields: Vec<HeaderField> = header_text.split(',').map(parse_header_field).collect();
+    let width = fields.len();
+    let field_count = |line: usize, found: usize| {
+        DataError::at(
+            file,
+            line,
+            found.min(width) + 1,
+            format!("expected {width} fields as in the header (line {header_line}), found {found}"),
+        )
+    };
+
+    let mut rest = &content[1..];
+    let mut units = None;
+    if let Some(&(line, t)) = rest.first() {
+        let f: Vec<&str> = t.split(',').collect();
+        if is_units_line(&f) {
+            if f.len() != width {
+                return Err(field_count(line, f.len()));
+            }
+            units = Some((line, f.iter().map(|s| unquote(s).to_string()).collect()));
+            rest = &rest[1..];
+        }
+    }
+    let header = Header {
+        file,
+        line: header_line,
+        fields,
+        units,
+    };
+
+    let mut notices = Vec::new();
+    let mut ignored = Vec::new();
+    let plan = header.plan(options, &mut notices, &mut ignored)?;
+    let input = match options.input {
+        Some(c) => c,
+        None => match &plan.force {
+            Some(f) if header.fields[f.index].name.eq_ignore_ascii_case("u") => Channel::Force,
+            _ => Channel::Displacement,
+        },
+    };
+    let has_input = match input {
+        Channel::Displacement => plan.displacement.is_some(),
+        Channel::Force => plan.force.is_some(),
+    };
+    if !has_input {
+        return Err(missing_column(file, header_line, input, &header.fields));
+    }
+
+    let replaced_time = match (sample_rate, &plan.time) {
+        (Some(_), Some(t)) => Some(t.text.clone()),
+        _ => None,
+    };
+    let mut time = match sample_rate {
+        Some(_) => None,
+        None => plan.time.map(|c| Reader::new(c, true)),
+    };
+    let mut step = plan.step.map(|c| Reader::new(c, true));
+    let mut disp = plan.displacement.map(|c| Reader::new(c, false));
+    let mut force = plan.force.map(|c| Reader::new(c, false));
+    if let Some(s) = &step {
+        notices.push(Notice::StepColumn {
+            column: s.col.text.clone(),
+        });
+    }
+
+    let mut skipped = 0;
+    for &(line, t) in rest {
+        let f: Vec<&str> = t.split(',').collect();
+        if f.len() != width {
+            return Err(field_count(line, f.len()));
+        }
+        if skipped < options.skip_rows {
+            skipped += 1;
+            notices.push(Notice::SkippedRow {
+                at: format!("line {line}"),
+                text: t.trim().to_string(),
+            });
+            continue;
+        }
+        for r in [&mut time, &mut step, &mut disp, &mut force]
+            .into_iter()
+            .flatten()
+        {
+            r.take(file, line, &f)?;
+        }
+    }
+    let rows = match (&disp, &force) {
+        (Some(d), _) => d.values.len(),
+        (None, Some(f)) => f.values.len(),
+        (None, None) => 0,
+    };
+    if rows == 0 {
+        let message = if skipped > 0 {
+            format!("expected a data row after skipping {skipped} rows, found end of file")
+        } else {
+            format!("expected a data row after the header (line {header_line}), found end of file")
+        };
+        return Err(DataError::at(file, n_lines + 1, 1, message));
+    }
+
+    let time = match sample_rate {
+        Some(hz) => {
+            notices.push(Notice::TimeFromSampleRate {
+                hz,
+                replaced: replaced_time,
+            });
+            Some(Series::canonical(
+                format!("sample rate {hz} Hz"),
+                Quantity::Time,
+                (0..rows).map(|k| k as f64 / hz).collect(),
+            ))
+        }
+        None => time.map(|r| r.series(Quantity::Time)),
+    };
+    if !ignored.is_empty() {
+        notices.push(Notice::IgnoredColumns { columns: ignored });
+    }
+    Ok(Record::new(
+        file,
+        input,
+        disp.map(|r| r.series(Quantity::Length)),
+        force.map(|r| r.series(Quantity::Force)),
+        time,
+    )?
+    .with_comments(comments)
+    .with_notices(notices))
+}

@@ -1,0 +1,180 @@
+//! Reading a record from a file: the options, and the choice between the CSV
+//! and JSON readers by file extension.
+
+use super::columns::Role;
+use super::error::DataError;
+use super::record::{Channel, Record};
+use super::units::Unit;
+use super::{csv, json};
+use std::fmt;
+use std::path::Path;
+
+/// A column of a CSV file, by header text or by 1-based position.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum ColumnRef {
+    /// The header field as written (trimmed, unquoted), or its name without
+    /// the unit: `force_kN` and `force` both name the column `force_kN`.
+    Name(String),
+    /// The 1-based column number.
+    Number(usize),
+}
+
+impl From<&str> for ColumnRef {
+    fn from(s: &str) -> Self {
+        ColumnRef::Name(s.to_string())
+    }
+}
+
+impl From<usize> for ColumnRef {
+    fn from(n: usize) -> Self {
+        ColumnRef::Number(n)
+    }
+}
+
+impl fmt::Display for ColumnRef {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            ColumnRef::Name(n) => write!(f, "'{n}'"),
+            ColumnRef::Number(k) => write!(f, "number {k}"),
+        }
+    }
+}
+
+/// How to read a record. The defaults recognise roles and units from the
+/// header (see [`columns`](super::columns)); every option overrides one guess.
+///
+/// ```
+/// use hyst::data::{Channel, ReadOptions, Role, Unit};
+/// // The MR-damper file has no units in its header and two force-like columns.
+/// let options = ReadOptions::default()
+///     .role("D", Role::Displacement)
+///     .unit("D", Unit::Centimetre)
+///     .role("F", Role::Force)
+///     .unit("F", Unit::Newton);
+/// // The Bouc-Wen benchmark has no time column: sample k is at k / 750 s.
+/// let benchmark = ReadOptions::default().sample_rate(750.0).input(Channel::Force);
+/// # let _ = (options, benchmark);
+/// ```
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct ReadOptions {
+    /// Roles given to columns (CSV only). A role given here is taken by no
+    /// other column.
+    pub roles: Vec<(ColumnRef, Role)>,
+    /// Units given to columns (CSV only); they replace the file's unit, with a
+    /// notice.
+    pub units: Vec<(ColumnRef, Unit)>,
+    /// The input channel; by default displacement, or force when the force
+    /// column is named `u` (the system-identification convention of the
+    /// Bouc-Wen benchmark), or what a JSON layout documents.
+    pub input: Option<Channel>,
+    /// Build the time base from this sample rate (Hz): sample `k` is at
+    /// `k / rate`. Replaces a time column of the file, with a notice.
+    pub sample_rate_hz: Option<f64>,
+    /// Skip this many leading data rows (e.g. a point count written as a data
+    /// row); each skipped row is reported as a notice.
+    pub skip_rows: usize,
+}
+
+impl ReadOptions {
+    /// Gives a column a role.
+    pub fn role(mut self, column: impl Into<ColumnRef>, role: Role) -> Self {
+        self.roles.push((column.into(), role));
+        self
+    }
+
+    /// Gives a column a unit.
+    pub fn unit(mut self, column: impl Into<ColumnRef>, unit: Unit) -> Self {
+        self.units.push((column.into(), unit));
+        self
+    }
+
+    /// Sets the input channel.
+    pub fn input(mut self, channel: Channel) -> Self {
+        self.input = Some(channel);
+        self
+    }
+
+    /// Sets the sample rate in Hz.
+    pub fn sample_rate(mut self, hz: f64) -> Self {
+        self.sample_rate_hz = Some(hz);
+        self
+    }
+
+    /// Skips leading data rows.
+    pub fn skip_rows(mut self, rows: usize) -> Self {
+        self.skip_rows = rows;
+        self
+    }
+
+    /// Checks the sample rate.
+    pub(crate) fn checked_sample_rate(&self, file: &Path) -> Result<Option<f64>, DataError> {
+        match self.sample_rate_hz {
+            Some(hz) if !(hz.is_finite() && hz > 0.0) => Err(DataError::file(
+                file,
+                format!("expected a positive finite sample rate, found {hz} Hz"),
+            )),
+            other => Ok(other),
+        }
+    }
+}
+
+/// The formats the readers know, by file extension.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Format {
+    /// Comma-separated values with a header (`.csv`, `.txt`).
+    Csv,
+    /// One of the JSON layouts of [`json`](super::json) (`.json`).
+    Json,
+}
+
+impl Format {
+    /// The format of a path, from its extension.
+    pub fn of(path: &Path) -> Result<Format, DataError> {
+        let ext = path
+            .extension()
+            .and_then(|e| e.to_str())
+            .map(str::to_ascii_lowercase);
+        match ext.as_deref() {
+            Some("csv") | Some("txt") => Ok(Format::Csv),
+            Some("json") => Ok(Format::Json),
+            other => Err(DataError::file(
+                path,
+                format!(
+                    "expected a .csv, .txt or .json file, found {} (MATLAB .mat and HDF5 files \
+                     are not read: use their CSV copies)",
+                    other.map_or("no extension".to_string(), |e| format!("'.{e}'"))
+                ),
+            )),
+        }
+    }
+}
+
+/// Reads a record from a file, choosing the reader by extension.
+///
+/// ```no_run
+/// use hyst::data::{read, ReadOptions};
+/// let r = read("../shared/data/peer-spd-columns/fd/spd_369.csv", &ReadOptions::default())?;
+/// let (u, f) = r.displacement_force()?;
+/// println!("{} samples, peak force {} kN", u.len(), f.iter().fold(0.0f64, |m, v| m.max(v.abs())));
+/// # Ok::<(), hyst::data::DataError>(())
+/// ```
+pub fn read(path: impl AsRef<Path>, options: &ReadOptions) -> Result<Record, DataError> {
+    let path = path.as_ref();
+    let format = Format::of(path)?;
+    let text = std::fs::read_to_string(path)
+        .map_err(|e| DataError::file(path, format!("cannot read the file: {e}")))?;
+    read_str(path, &text, format, options)
+}
+
+/// Reads a record from text already in memory; `name` is used in messages.
+pub fn read_str(
+    name: impl AsRef<Path>,
+    text: &str,
+    format: Format,
+    options: &ReadOptions,
+) -> Result<Record, DataError> {
+    match format {
+        Format::Csv => csv::parse(name.as_ref(), text, options),
+        Format::Json => json::parse(name.as_ref(), text, options),
+    }
+}

@@ -1,0 +1,405 @@
+//! A lab record: a displacement and a force signal in canonical units (mm, kN),
+//! an optional time base (s), which signal drives the test, and what the reader
+//! noticed on the way.
+
+use super::branches::{SegmentOptions, Segmentation};
+use super::cycles::{CycleError, Cycles, Threshold};
+use super::error::DataError;
+use super::units::{Quantity, Unit};
+use std::fmt;
+use std::path::{Path, PathBuf};
+
+/// The two signals of a hysteresis record.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Channel {
+    /// Displacement (deformation, drift, strain), canonical unit mm.
+    Displacement,
+    /// Force (load, shear, stress), canonical unit kN.
+    Force,
+}
+
+impl Channel {
+    /// The quantity of the channel's unit.
+    pub fn quantity(self) -> Quantity {
+        match self {
+            Channel::Displacement => Quantity::Length,
+            Channel::Force => Quantity::Force,
+        }
+    }
+
+    /// The other channel.
+    pub fn other(self) -> Channel {
+        match self {
+            Channel::Displacement => Channel::Force,
+            Channel::Force => Channel::Displacement,
+        }
+    }
+}
+
+impl fmt::Display for Channel {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            Channel::Displacement => "displacement",
+            Channel::Force => "force",
+        })
+    }
+}
+
+/// One signal of a record: its values in the canonical unit, and the column
+/// name and unit it was read from.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Series {
+    /// The column name as written in the file (or a description, for series
+    /// that did not come from a column).
+    pub name: String,
+    /// The unit of the file; `values` are already converted from it.
+    pub unit: Unit,
+    /// The values in the canonical unit of `unit`'s quantity (mm, kN or s).
+    pub values: Vec<f64>,
+}
+
+impl Series {
+    /// A series already in the canonical unit of `quantity`.
+    pub fn canonical(name: impl Into<String>, quantity: Quantity, values: Vec<f64>) -> Self {
+        Series {
+            name: name.into(),
+            unit: quantity.canonical(),
+            values,
+        }
+    }
+}
+
+/// Something the reader did that the caller should know about: nothing is
+/// dropped or assumed silently.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Notice {
+    /// A column had no unit; the canonical unit of its role was assumed.
+    AssumedUnit {
+        /// The column.
+        column: String,
+        /// The unit assumed.
+        unit: Unit,
+    },
+    /// A unit given by the read options replaced the unit the file states.
+    OverriddenUnit {
+        /// The column.
+        column: String,
+        /// The unit in the file.
+        file_unit: String,
+        /// The unit used.
+        unit: Unit,
+    },
+    /// Units were not stated in the file; the format's documented convention
+    /// was used.
+    UnitsByConvention {
+        /// The convention and where it is documented.
+        what: String,
+    },
+    /// Columns present in the file that the record does not hold.
+    IgnoredColumns {
+        /// Their names (with a reason when one is useful).
+        columns: Vec<String>,
+    },
+    /// A data row the caller asked to skip, with its text.
+    SkippedRow {
+        /// Where: `line 4` (CSV) or `sample 0` (JSON).
+        at: String,
+        /// The row as written.
+        text: String,
+    },
+    /// A step or index column was checked to increase and used only as the row
+    /// order.
+    StepColumn {
+        /// The column.
+        column: String,
+    },
+    /// The time base was built from a sample rate: sample `k` is at `k / rate`.
+    TimeFromSampleRate {
+        /// The rate in Hz.
+        hz: f64,
+        /// A time column of the file that this replaced, if any.
+        replaced: Option<String>,
+    },
+}
+
+impl fmt::Display for Notice {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Notice::AssumedUnit { column, unit } => {
+                write!(f, "column '{column}' states no unit: assumed {unit}")
+            }
+            Notice::OverriddenUnit {
+                column,
+                file_unit,
+                unit,
+            } => write!(
+                f,
+                "column '{column}': unit '{file_unit}' of the file replaced by {unit} (read options)"
+            ),
+            Notice::UnitsByConvention { what } => write!(f, "units not stated in the file: {what}"),
+            Notice::IgnoredColumns { columns } => {
+                write!(f, "columns not read: {}", columns.join(", "))
+            }
+            Notice::SkippedRow { at, text } => {
+                write!(f, "row at {at} skipped as asked: '{text}'")
+            }
+            Notice::StepColumn { column } => write!(
+                f,
+                "column '{column}' checked to increase and used only as the row order"
+            ),
+            Notice::TimeFromSampleRate { hz, replaced } => {
+                write!(f, "time built from the sample rate {hz} Hz (t = k / {hz})")?;
+                if let Some(c) = replaced {
+                    write!(f, ", replacing the time column '{c}'")?;
+                }
+                Ok(())
+            }
+        }
+    }
+}
+
+/// A lab record: displacement and force in mm and kN, an optional time base in
+/// s, which of the two signals drives the test (the input), the comment lines
+/// of the file and the notices of the reader.
+///
+/// A record always holds its input signal; the output may be missing (a
+/// displacement history to simulate has no force yet). All signals have the
+/// same length, and every value is finite.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Record {
+    source: PathBuf,
+    time: Option<Series>,
+    displacement: Option<Series>,
+    force: Option<Series>,
+    input: Channel,
+    comments: Vec<String>,
+    notices: Vec<Notice>,
+}
+
+impl Record {
+    /// Builds a record, checking that the input signal is present, that every
+    /// series has the same length, that values are finite, and that time
+    /// increases. Values must already be in canonical units.
+    pub fn new(
+        source: impl Into<PathBuf>,
+        input: Channel,
+        displacement: Option<Series>,
+        force: Option<Series>,
+        time: Option<Series>,
+    ) -> Result<Record, DataError> {
+        let source = source.into();
+        let record = Record {
+            source,
+            time,
+            displacement,
+            force,
+            input,
+            comments: Vec::new(),
+            notices: Vec::new(),
+        };
+        record.check()?;
+        Ok(record)
+    }
+
+    /// A displacement history (mm) with no force, e.g. to simulate; with
+    /// `dt` (s) sample `k` is at `k * dt`.
+    ///
+    /// ```
+    /// use hyst::data::Record;
+    /// let r = Record::from_history("ramp", vec![0.0, 0.5, 1.0], Some(0.1)).unwrap();
+    /// assert_eq!(r.input(), &[0.0, 0.5, 1.0]);
+    /// assert_eq!(r.time().unwrap()[2], 0.2);
+    /// assert!(r.force().is_none());
+    /// ```
+    pub fn from_history(
+        name: impl Into<PathBuf>,
+        displacement_mm: Vec<f64>,
+        dt: Option<f64>,
+    ) -> Result<Record, DataError> {
+        let name = name.into();
+        let time = match dt {
+            Some(dt) if dt.is_finite() && dt > 0.0 => Some(Series::canonical(
+                format!("dt = {dt} s"),
+                Quantity::Time,
+                (0..displacement_mm.len()).map(|k| k as f64 * dt).collect(),
+            )),
+            Some(dt) => {
+                return Err(DataError::file(
+                    &name,
+                    format!("expected a positive finite time step, found {dt} s"),
+                ))
+            }
+            None => None,
+        };
+        let d = Series::canonical("displacement", Quantity::Length, displacement_mm);
+        Record::new(name, Channel::Displacement, Some(d), None, time)
+    }
+
+    fn check(&self) -> Result<(), DataError> {
+        let file = &self.source;
+        let Some(input) = self.series(self.input) else {
+            return Err(DataError::file(
+                file,
+                format!("expected a {} signal: it is the record's input", self.input),
+            ));
+        };
+        let n = input.values.len();
+        let all = [&self.time, &self.displacement, &self.force];
+        for s in all.into_iter().flatten() {
+            if s.values.len() != n {
+                return Err(DataError::file(
+                    file,
+                    format!(
+                        "expected every signal to have {n} samples like '{}', found {} in '{}'",
+                        input.name,
+                        s.values.len(),
+                        s.name
+                    ),
+                ));
+            }
+            if let Some(k) = s.values.iter().position(|v| !v.is_finite()) {
+                return Err(DataError::file(
+                    file,
+                    format!(
+                        "expected finite values, found {} at sample {k} of '{}'",
+                        s.values[k], s.name
+                    ),
+                ));
+            }
+        }
+        if let Some(t) = &self.time {
+            if let Some(k) = t.values.windows(2).position(|w| w[1] <= w[0]) {
+                return Err(DataError::file(
+                    file,
+                    format!(
+                        "expected time to increase, found {} s after {} s at sample {}",
+                        t.values[k + 1],
+                        t.values[k],
+                        k + 1
+                    ),
+                ));
+            }
+        }
+        Ok(())
+    }
+
+    /// The record with these comment lines (written as `#` lines by
+    /// [`write_record`](super::write_record)).
+    pub fn with_comments(mut self, comments: Vec<String>) -> Self {
+        self.comments = comments;
+        self
+    }
+
+    pub(crate) fn with_notices(mut self, notices: Vec<Notice>) -> Self {
+        self.notices = notices;
+        self
+    }
+
+    /// The file the record was read from (or the name it was given).
+    pub fn source(&self) -> &Path {
+        &self.source
+    }
+
+    /// Number of samples.
+    pub fn len(&self) -> usize {
+        self.input().len()
+    }
+
+    /// Whether the record has no samples.
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// Time in s, if the file had a time base or a sample rate was given.
+    pub fn time(&self) -> Option<&[f64]> {
+        self.time.as_ref().map(|s| s.values.as_slice())
+    }
+
+    /// Displacement in mm.
+    pub fn displacement(&self) -> Option<&[f64]> {
+        self.displacement.as_ref().map(|s| s.values.as_slice())
+    }
+
+    /// Force in kN.
+    pub fn force(&self) -> Option<&[f64]> {
+        self.force.as_ref().map(|s| s.values.as_slice())
+    }
+
+    /// The series of a channel, with its column name and original unit.
+    pub fn series(&self, channel: Channel) -> Option<&Series> {
+        match channel {
+            Channel::Displacement => self.displacement.as_ref(),
+            Channel::Force => self.force.as_ref(),
+        }
+    }
+
+    /// The time series with its column name and original unit.
+    pub fn time_series(&self) -> Option<&Series> {
+        self.time.as_ref()
+    }
+
+    /// Which channel drives the test: displacement for displacement-controlled
+    /// quasi-static tests, force for force-driven records such as the Bouc-Wen
+    /// benchmark.
+    pub fn input_channel(&self) -> Channel {
+        self.input
+    }
+
+    /// The input signal (always present).
+    pub fn input(&self) -> &[f64] {
+        match self.series(self.input) {
+            Some(s) => &s.values,
+            None => &[],
+        }
+    }
+
+    /// The output signal, if the record has one.
+    pub fn output(&self) -> Option<&[f64]> {
+        self.series(self.input.other()).map(|s| s.values.as_slice())
+    }
+
+    /// The record with another input channel (which must be present).
+    pub fn with_input(mut self, input: Channel) -> Result<Record, DataError> {
+        self.input = input;
+        self.check()?;
+        Ok(self)
+    }
+
+    /// Displacement (mm) and force (kN) together, or an error naming the file
+    /// if one is missing.
+    pub fn displacement_force(&self) -> Result<(&[f64], &[f64]), DataError> {
+        match (self.displacement(), self.force()) {
+            (Some(d), Some(f)) => Ok((d, f)),
+            (d, _) => {
+                let missing = if d.is_none() { "displacement" } else { "force" };
+                Err(DataError::file(
+                    &self.source,
+                    format!("expected displacement and force, found no {missing} signal"),
+                ))
+            }
+        }
+    }
+
+    /// The `#` comment lines of the file, without the `#`.
+    pub fn comments(&self) -> &[String] {
+        &self.comments
+    }
+
+    /// What the reader assumed, skipped or ignored.
+    pub fn notices(&self) -> &[Notice] {
+        &self.notices
+    }
+
+    /// Reversals, half-cycles and cycles of the input signal.
+    pub fn cycles(&self, threshold: Threshold) -> Result<Cycles, CycleError> {
+        Cycles::find(self.input(), threshold)
+    }
+
+    /// Cycles of the input signal, branch classes, near-zero-force flags, peak
+    /// force per half-cycle and energy per cycle; needs displacement and force.
+    pub fn segment(&self, options: &SegmentOptions) -> Result<Segmentation, DataError> {
+        let (d, f) = self.displacement_force()?;
+        Segmentation::new(d, f, self.input(), options)
+            .map_err(|e| DataError::file(&self.source, e.to_string()))
+    }
+}

@@ -1,0 +1,314 @@
+//! Malformed inputs, each with its exact message: file, line, column (1-based)
+//! and what was expected.
+
+use crate::data::{read, read_str, Channel, Format, Notice, ReadOptions, Role, Unit};
+
+fn csv_error(name: &str, text: &str, options: &ReadOptions) -> String {
+    match read_str(name, text, Format::Csv, options) {
+        Ok(r) => panic!("{name}: expected an error, read {} rows", r.len()),
+        Err(e) => e.to_string(),
+    }
+}
+
+#[test]
+fn malformed_csv_table() {
+    let d = ReadOptions::default();
+    let cases: Vec<(&str, String, ReadOptions, &str)> = vec![
+        (
+            "spd_369.csv",
+            format!("disp_mm,force_kN\n{}0.5,abc\n", "0.1,1.0\n".repeat(15)),
+            d.clone(),
+            "spd_369.csv:17:2: expected a number for column 'force_kN', found 'abc'",
+        ),
+        (
+            "nan.csv",
+            "# c\ntime (s),displacement (mm),force (kN)\n0,0,0\n1,NaN,2\n".into(),
+            d.clone(),
+            "nan.csv:4:2: expected a finite number for column 'displacement (mm)', found 'NaN'",
+        ),
+        (
+            "inf.csv",
+            "disp_mm,force_kN\n0,1e400\n".into(),
+            d.clone(),
+            "inf.csv:2:2: expected a finite number for column 'force_kN', found '1e400'",
+        ),
+        (
+            "empty.csv",
+            String::new(),
+            d.clone(),
+            "empty.csv:1:1: empty file: expected a header line naming the columns",
+        ),
+        (
+            "blank.csv",
+            "\n  \n".into(),
+            d.clone(),
+            "blank.csv:1:1: empty file: expected a header line naming the columns",
+        ),
+        (
+            "comments.csv",
+            "# only\n# comments\n".into(),
+            d.clone(),
+            "comments.csv:3:1: expected a header line naming the columns, found end of file",
+        ),
+        (
+            "header.csv",
+            "# c\ndisp_mm,force_kN\n".into(),
+            d.clone(),
+            "header.csv:3:1: expected a data row after the header (line 2), found end of file",
+        ),
+        (
+            "nodisp.csv",
+            "a,b\n1,2\n".into(),
+            d.clone(),
+            "nodisp.csv:1:1: expected a displacement column (named displacement, disp, drift, \
+             strain, deformation, deflection, delta, or with a length unit, or given the role in \
+             the read options), found columns 'a', 'b'",
+        ),
+        (
+            "noforce.csv",
+            "displacement (mm),b\n1,2\n".into(),
+            ReadOptions::default().input(Channel::Force),
+            "noforce.csv:1:1: expected a force column (named force, load, stress, shear, f, v, or \
+             with a force unit, or given the role in the read options), found columns \
+             'displacement (mm)', 'b'",
+        ),
+        (
+            "unit.csv",
+            "time (s),displacement (furlong),force (kN)\n0,0,0\n".into(),
+            d.clone(),
+            "unit.csv:1:2: unknown unit 'furlong' for column 'displacement (furlong)': expected a \
+             length unit (mm, cm, m, in)",
+        ),
+        (
+            "unit2.csv",
+            "disp_mm,force_tonnes\n0,0\n".into(),
+            d.clone(),
+            "unit2.csv:1:2: unknown unit 'tonnes' for column 'force_tonnes': expected a force unit \
+             (N, kN, MN, kip, lbf)",
+        ),
+        (
+            "unit3.csv",
+            "u [furlong]\n0\n".into(),
+            d.clone(),
+            "unit3.csv:1:1: unknown unit 'furlong' for column 'u [furlong]': expected a length or \
+             force unit (mm, cm, m, in; N, kN, MN, kip, lbf)",
+        ),
+        (
+            "unitsline.csv",
+            "Actuator Force,Actuator Displacement\nkN,furlong\n1,2\n".into(),
+            d.clone(),
+            "unitsline.csv:2:2: unknown unit 'furlong' for column 'Actuator Displacement': expected \
+             a length unit (mm, cm, m, in)",
+        ),
+        (
+            "conflict.csv",
+            "force (mm),displacement (kN)\n0,0\n".into(),
+            d.clone(),
+            "conflict.csv:1:1: column 'force (mm)' is named like force but its unit mm is a length unit",
+        ),
+        (
+            "back.csv",
+            "time (s),displacement (mm),force (kN)\n0.0,0,0\n1.2,1,1\n0.6,2,2\n".into(),
+            d.clone(),
+            "back.csv:4:1: expected 'time (s)' to increase after '1.2' on line 3, found '0.6'",
+        ),
+        (
+            "same.csv",
+            "t (ms),disp_mm,force_kN\n0,0,0\n5,1,1\n5,2,2\n".into(),
+            d.clone(),
+            "same.csv:4:1: expected 't (ms)' to increase after '5' on line 3, found '5'",
+        ),
+        (
+            "step.csv",
+            "step,strain,stress\n0,0,0\n2,1,1\n1,2,2\n".into(),
+            d.clone(),
+            "step.csv:4:1: expected 'step' to increase after '2' on line 3, found '1'",
+        ),
+        (
+            "wide.csv",
+            "disp_mm,force_kN\n0,0\n1,2,3\n".into(),
+            d.clone(),
+            "wide.csv:3:3: expected 2 fields as in the header (line 1), found 3",
+        ),
+        (
+            "narrow.csv",
+            "# x\n\ntime (s),disp_mm,force_kN\n0,0,0\n1,2\n".into(),
+            d.clone(),
+            "narrow.csv:5:3: expected 3 fields as in the header (line 3), found 2",
+        ),
+        (
+            "trailing.csv",
+            "disp_mm,force_kN\n0,0,\n".into(),
+            d.clone(),
+            "trailing.csv:2:3: expected 2 fields as in the header (line 1), found 3",
+        ),
+        (
+            "empty_field.csv",
+            "disp_mm,force_kN\n0,\n".into(),
+            d.clone(),
+            "empty_field.csv:2:2: expected a number for column 'force_kN', found ''",
+        ),
+        (
+            "quoted.csv",
+            "disp_mm,force_kN\n\"1.0\",2\n".into(),
+            d.clone(),
+            "quoted.csv:2:1: expected a number for column 'disp_mm', found '\"1.0\"'",
+        ),
+        (
+            "ambiguous.csv",
+            "disp (mm),drift (mm),force (kN)\n0,0,0\n".into(),
+            d.clone(),
+            "ambiguous.csv:1:2: columns 'disp (mm)' (1) and 'drift (mm)' (2) both look like \
+             displacement: choose one with the read options",
+        ),
+        (
+            "option.csv",
+            "disp_mm,force_kN\n0,0\n".into(),
+            ReadOptions::default().role("lateral force", Role::Force),
+            "option.csv:1:1: read options name column 'lateral force', which is not in the header \
+             (columns: 'disp_mm', 'force_kN')",
+        ),
+        (
+            "option2.csv",
+            "disp_mm,force_kN\n0,0\n".into(),
+            ReadOptions::default().role(3, Role::Force),
+            "option2.csv:1:1: read options name column number 3, but the header has 2 columns",
+        ),
+        (
+            "option3.csv",
+            "a,b\n0,0\n".into(),
+            ReadOptions::default()
+                .role("a", Role::Displacement)
+                .unit("a", Unit::Kilonewton),
+            "option3.csv:1:1: column 'a' has the role displacement, which needs a length unit, but \
+             its unit kN is a force unit",
+        ),
+        (
+            "skip.csv",
+            "disp_mm,force_kN\n1955,0\n".into(),
+            ReadOptions::default().skip_rows(1),
+            "skip.csv:3:1: expected a data row after skipping 1 rows, found end of file",
+        ),
+        (
+            "rate.csv",
+            "disp_mm,force_kN\n0,0\n".into(),
+            ReadOptions::default().sample_rate(0.0),
+            "rate.csv: expected a positive finite sample rate, found 0 Hz",
+        ),
+        (
+            "units_twice.csv",
+            "force (kN),disp (mm)\nkN,in\n1,2\n".into(),
+            d.clone(),
+            "units_twice.csv:2:2: column 'disp (mm)' has unit 'mm' in the header and 'in' in the \
+             units line",
+        ),
+    ];
+    let mut names = std::collections::HashSet::new();
+    for (name, text, options, expected) in &cases {
+        assert!(names.insert(*name), "duplicate case {name}");
+        assert_eq!(&csv_error(name, text, options), expected, "case {name}");
+    }
+}
+
+#[test]
+fn unreadable_and_unknown_files() {
+    let e = read("no/such/file.csv", &ReadOptions::default()).unwrap_err();
+    assert!(
+        e.to_string()
+            .starts_with("no/such/file.csv: cannot read the file: "),
+        "{e}"
+    );
+    let e = read("x.mat", &ReadOptions::default()).unwrap_err();
+    assert_eq!(
+        e.to_string(),
+        "x.mat: expected a .csv, .txt or .json file, found '.mat' (MATLAB .mat and HDF5 files are \
+         not read: use their CSV copies)"
+    );
+}
+
+#[test]
+fn skipped_rows_are_reported() {
+    let text = "disp_mm,force_kN\n1955.0,0.0\n0.5,1\n1.0,2\n";
+    let r = read_str(
+        "a.csv",
+        text,
+        Format::Csv,
+        &ReadOptions::default().skip_rows(1),
+    )
+    .unwrap();
+    assert_eq!(r.displacement().unwrap(), &[0.5, 1.0]);
+    assert_eq!(
+        r.notices(),
+        &[Notice::SkippedRow {
+            at: "line 2".into(),
+            text: "1955.0,0.0".into()
+        }]
+    );
+    assert_eq!(
+        r.notices()[0].to_string(),
+        "row at line 2 skipped as asked: '1955.0,0.0'"
+    );
+}
+
+#[test]
+fn overrides_and_conventions() {
+    // A unit given in the options replaces the file's, with a notice.
+    let text = "disp (in),force (kN)\n1,2\n";
+    let options = ReadOptions::default().unit("disp", Unit::Millimetre);
+    let r = read_str("o.csv", text, Format::Csv, &options).unwrap();
+    assert_eq!(r.displacement().unwrap(), &[1.0]);
+    assert_eq!(
+        r.notices()[0].to_string(),
+        "column 'disp (in)': unit 'in' of the file replaced by mm (read options)"
+    );
+    // Force-driven by option, force-only history.
+    let r = read_str(
+        "f.csv",
+        "load [kip]\n1\n2\n",
+        Format::Csv,
+        &ReadOptions::default().input(Channel::Force),
+    )
+    .unwrap();
+    assert_eq!(r.input(), &[4.448_221_615_260_5, 2.0 * 4.448_221_615_260_5]);
+    assert!(r.output().is_none());
+    // A sample rate replaces a time column, with a notice.
+    let r = read_str(
+        "t.csv",
+        "time (ms),disp_mm,force_kN\n0,0,0\n7,1,1\n",
+        Format::Csv,
+        &ReadOptions::default().sample_rate(100.0),
+    )
+    .unwrap();
+    assert_eq!(r.time().unwrap(), &[0.0, 0.01]);
+    assert_eq!(
+        r.notices(),
+        &[Notice::TimeFromSampleRate {
+            hz: 100.0,
+            replaced: Some("time (ms)".into())
+        }]
+    );
+    // ms are converted; BOM, CRLF and quotes in the header are accepted.
+    let r = read_str(
+        "w.csv",
+        "\u{feff}\"t (ms)\",\"x (cm)\",\"F (N)\"\r\n0,1,1000\r\n250,2,-500\r\n",
+        Format::Csv,
+        &ReadOptions::default(),
+    )
+    .unwrap();
+    assert_eq!(r.time().unwrap(), &[0.0, 0.25]);
+    assert_eq!(r.displacement().unwrap(), &[10.0, 20.0]);
+    assert_eq!(r.force().unwrap(), &[1.0, -0.5]);
+    // Columns chosen by number; Ignore silences a column.
+    let r = read_str(
+        "n.csv",
+        "a,b,force\n1,2,3\n",
+        Format::Csv,
+        &ReadOptions::default()
+            .role(2, Role::Displacement)
+            .role("force", Role::Ignore)
+            .input(Channel::Displacement),
+    )
+    .unwrap();
+    assert_eq!(r.displacement().unwrap(), &[2.0]);
+    assert!(r.force().is_none());
+}
