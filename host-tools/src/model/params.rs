@@ -1,0 +1,190 @@
+//! Parameter files: one flat JSON object keyed by the thesis' symbols spelled
+//! out (`k0`, `alpha`, `n`, `beta`, `gamma`, `A0`, `delta_A`, `nu0`,
+//! `delta_nu`, `eta0`, `delta_eta`, `zeta0`, `p`, `q`, `psi0`, `delta_psi`,
+//! `lambda`, plus `m` and `xi` for dynamics and the optional `energy_limit`).
+//!
+//! Three more keys may appear: `"model"` (the spec the set belongs to, e.g.
+//! `"bw+pinching"`), `"units"` (`{"displacement": "mm", "force": "kN"}`) and
+//! `"fit"` (what `hyst fit` records about how the set was obtained). Every
+//! other key must be a parameter of the model, with a finite number: a
+//! misspelt or foreign name is an error, never ignored.
+//!
+//! ```json
+//! {"model": "bw", "k0": 6.0, "alpha": 0.2, "n": 1.2, "beta": 2.0, "gamma": -1.0}
+//! ```
+
+use super::ModelSpec;
+use anyhow::{anyhow, bail, Context, Result};
+use hysteresis::bwbn::{specs, BwbnParams, ENERGY_LIMIT};
+use serde_json::{Map, Value};
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+
+/// Keys that are not model parameters.
+const META: [&str; 3] = ["model", "units", "fit"];
+/// Parameters of the oscillator, not of the hysteretic element.
+const DYNAMIC: [&str; 2] = ["m", "xi"];
+
+/// A parameter file as read.
+#[derive(Clone, Debug, Default)]
+pub struct ParamFile {
+    /// Where it came from.
+    pub path: PathBuf,
+    /// The `model` key, if present.
+    pub model: Option<ModelSpec>,
+    /// Numeric parameters by name.
+    pub values: BTreeMap<String, f64>,
+    /// The `units` object, if present.
+    pub units: Option<Map<String, Value>>,
+    /// The `fit` object, if present.
+    pub fit: Option<Value>,
+}
+
+impl ParamFile {
+    /// Reads and checks the form of a parameter file (names are checked
+    /// against a model by [`ParamFile::build`]).
+    pub fn read(path: impl AsRef<Path>) -> Result<Self> {
+        let path = path.as_ref();
+        let text = std::fs::read_to_string(path).with_context(|| format!("{}: cannot read", path.display()))?;
+        Self::parse(path, &text)
+    }
+
+    /// Parses the text of a parameter file.
+    pub fn parse(path: &Path, text: &str) -> Result<Self> {
+        let value: Value = serde_json::from_str(text).map_err(|e| {
+            anyhow!("{}:{}:{}: not valid JSON: {e}", path.display(), e.line(), e.column())
+        })?;
+        let Value::Object(map) = value else {
+            bail!("{}: expected a JSON object of parameters, found {}", path.display(), kind(&value));
+        };
+        let mut file = ParamFile { path: path.to_path_buf(), ..Default::default() };
+        for (key, v) in map {
+            match (key.as_str(), v) {
+                ("model", Value::String(s)) => {
+                    file.model = Some(ModelSpec::parse(&s).with_context(|| format!("{}: key \"model\"", path.display()))?)
+                }
+                ("units", Value::Object(u)) => file.units = Some(u),
+                ("fit", v) => file.fit = Some(v),
+                (k, v) if META.contains(&k) => bail!("{}: key \"{k}\" has the wrong type ({})", path.display(), kind(&v)),
+                (_, Value::Number(n)) => {
+                    let x = n.as_f64().filter(|x| x.is_finite()).ok_or_else(|| {
+                        anyhow!("{}: parameter \"{key}\" is not a finite number", path.display())
+                    })?;
+                    file.values.insert(key, x);
+                }
+                (_, v) => bail!("{}: parameter \"{key}\" must be a number, found {}", path.display(), kind(&v)),
+            }
+        }
+        Ok(file)
+    }
+
+    /// The spec to use: `cli` if given (it must agree with the file's), else
+    /// the file's.
+    pub fn spec(&self, cli: Option<ModelSpec>) -> Result<ModelSpec> {
+        match (cli, self.model) {
+            (Some(c), Some(f)) if c != f => bail!(
+                "--model {c} disagrees with {}, which holds parameters of model {f}",
+                self.path.display()
+            ),
+            (Some(c), _) => Ok(c),
+            (None, Some(f)) => Ok(f),
+            (None, None) => bail!("no model: give --model or a \"model\" key in {}", self.path.display()),
+        }
+    }
+
+    /// The model parameter set of `spec` (validated), rejecting names that do
+    /// not belong to it. `dynamic` allows `m` and `xi`.
+    pub fn build(&self, spec: ModelSpec, dynamic: bool) -> Result<BwbnParams<f64>> {
+        let known: Vec<&str> = specs(spec.effects).map(|s| s.name).chain([ENERGY_LIMIT]).collect();
+        for name in self.values.keys() {
+            let ok = known.contains(&name.as_str()) || (dynamic && DYNAMIC.contains(&name.as_str()));
+            if !ok {
+                let hint = if DYNAMIC.contains(&name.as_str()) {
+                    " (it belongs to force-driven dynamics)".to_string()
+                } else {
+                    format!("; model {spec} has {}", known.join(", "))
+                };
+                bail!("{}: \"{name}\" is not a parameter of model {spec}{hint}", self.path.display());
+            }
+        }
+        BwbnParams::from_named(spec.effects, |n| self.values.get(n).copied())
+            .map_err(|e| anyhow!("{}: {e}", self.path.display()))
+    }
+}
+
+fn kind(v: &Value) -> &'static str {
+    match v {
+        Value::Null => "null",
+        Value::Bool(_) => "a boolean",
+        Value::Number(_) => "a number",
+        Value::String(_) => "a string",
+        Value::Array(_) => "an array",
+        Value::Object(_) => "an object",
+    }
+}
+
+/// Writes a parameter file: `model`, the parameters of `params` (plus
+/// `extra` such as `xi`, `m`), `units` and `fit`.
+pub fn to_json(
+    spec: ModelSpec,
+    params: &BwbnParams<f64>,
+    extra: &[(&str, f64)],
+    units: Option<(&str, &str)>,
+    fit: Option<Value>,
+) -> Value {
+    let mut map = Map::new();
+    map.insert("model".into(), Value::String(spec.to_string()));
+    params.for_each(|s, v| {
+        map.insert(s.name.into(), Value::from(v));
+    });
+    if params.energy_limit() < f64::MAX {
+        map.insert(ENERGY_LIMIT.into(), Value::from(params.energy_limit()));
+    }
+    for (k, v) in extra {
+        map.insert((*k).into(), Value::from(*v));
+    }
+    if let Some((d, f)) = units {
+        map.insert("units".into(), serde_json::json!({"displacement": d, "force": f}));
+    }
+    if let Some(fit) = fit {
+        map.insert("fit".into(), fit);
+    }
+    Value::Object(map)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn parse(text: &str) -> Result<ParamFile> {
+        ParamFile::parse(Path::new("p.json"), text)
+    }
+
+    #[test]
+    fn reads_a_flat_file_and_builds_the_model() {
+        let f = parse(r#"{"model": "bw+pinching", "k0": 6, "alpha": 0.2, "n": 1.2, "beta": 2, "gamma": -1, "zeta0": 0.5}"#).unwrap();
+        let spec = f.spec(None).unwrap();
+        let p = f.build(spec, false).unwrap();
+        assert_eq!(p.get("zeta0"), Some(0.5));
+        assert_eq!(p.get("lambda"), Some(0.5), "missing effect parameters take their off values");
+        let back = to_json(spec, &p, &[], Some(("mm", "kN")), None);
+        let again = parse(&back.to_string()).unwrap();
+        assert_eq!(again.build(again.spec(None).unwrap(), false).unwrap(), p);
+    }
+
+    #[test]
+    fn errors_name_the_file_and_the_problem() {
+        let msg = |t: &str| parse(t).and_then(|f| f.build(f.spec(Some(ModelSpec::BW))?, false)).unwrap_err().to_string();
+        assert!(msg("[1, 2]").contains("p.json: expected a JSON object of parameters, found an array"));
+        assert!(msg(r#"{"k0": "six"}"#).contains("parameter \"k0\" must be a number, found a string"));
+        assert!(msg("{\"k0\": 6,\n \"alpha\": }").starts_with("p.json:2:"));
+        let m = msg(r#"{"k0": 6, "alpha": 0.2, "n": 1.2, "beta": 2, "gamma": -1, "zeta0": 0.5}"#);
+        assert!(m.contains("\"zeta0\" is not a parameter of model bw"), "{m}");
+        let m = msg(r#"{"k0": 6, "alpha": 1.2, "n": 1.2, "beta": 2, "gamma": -1}"#);
+        assert_eq!(m, "p.json: alpha must lie in [0, 1]");
+        let m = msg(r#"{"k0": 6, "alpha": 0.2, "n": 1.2, "beta": 2}"#);
+        assert_eq!(m, "p.json: gamma is required but missing");
+        let m = parse(r#"{"model": "bwbn"}"#).unwrap().spec(Some(ModelSpec::BW)).unwrap_err().to_string();
+        assert!(m.contains("--model bw disagrees"), "{m}");
+    }
+}
