@@ -309,3 +309,62 @@ fn long_titles_and_names_are_shortened_not_clipped() {
             .is_some_and(|t| t.starts_with(long)));
     }
 }
+
+#[test]
+fn many_cycles_thin_their_labels_and_long_names_rotate() {
+    use hyst::report::plots::{ladder, per_cycle_bars, Rung, Signal};
+    let e: Vec<f64> = (0..120).map(|c| 10.0 + c as f64).collect();
+    let svg = per_cycle_bars(
+        Quantity::new("Energy", "kN·mm"),
+        &[Signal::measured("measured", "kN·mm", &e)],
+    )
+    .unwrap()
+    .to_svg();
+    assert_sane(&svg);
+    // Cycle numbers thinned to 1, 10, 20, … 120, level.
+    let doc = parse(&svg);
+    let cycles: Vec<String> = class(&doc, "tick")
+        .iter()
+        .filter(|n| n.attribute("text-anchor") == Some("middle"))
+        .map(|n| n.text().unwrap().to_string())
+        .collect();
+    let expected: Vec<String> = std::iter::once(1)
+        .chain((10..=120).step_by(10))
+        .map(|c| c.to_string())
+        .collect();
+    assert_eq!(cycles, expected);
+
+    let names = [
+        "bw",
+        "+strength-degradation",
+        "+stiffness-degradation",
+        "+pinching",
+        "+asymmetry",
+        "+rate-dependence",
+    ];
+    let rungs: Vec<Rung> = names
+        .iter()
+        .enumerate()
+        .map(|(i, n)| Rung {
+            label: n,
+            params: 5 + 2 * i,
+            nrmse: 0.3 / (i as f64 + 1.0),
+            delta_bic: (i > 0).then_some(-100.0 / i as f64),
+        })
+        .collect();
+    let svg = ladder(&rungs, None).unwrap().to_svg();
+    assert_sane(&svg);
+    let doc = parse(&svg);
+    let rotated = class(&doc, "tick")
+        .iter()
+        .filter(|n| {
+            n.attribute("transform")
+                .is_some_and(|t| t.starts_with("rotate"))
+        })
+        .count();
+    assert_eq!(
+        rotated,
+        2 * names.len(),
+        "every rung named, slanted, in both panels"
+    );
+}

@@ -460,11 +460,6 @@ impl Figure {
     pub fn size(&self) -> (f64, f64) {
         (self.width, self.height)
     }
-
-    /// The figure's title.
-    pub fn title_text(&self) -> &str {
-        &self.title
-    }
 }
 
 #[cfg(test)]

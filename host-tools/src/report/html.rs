@@ -170,7 +170,7 @@ figure svg { display: block; max-width: 100%; height: auto; }
 figcaption, caption { font-size: 0.92em; color: #444; text-align: left; padding: 0.3em 0; }
 table { border-collapse: collapse; margin: 1em 0; font-size: 0.95em; }
 th, td { padding: 0.25em 0.8em; border-bottom: 1px solid #e2e2e2; text-align: left; }
-th { border-bottom: 2px solid #888; }
+th { border-bottom: 2px solid #aaa; }
 td.num, th.num { text-align: right; font-variant-numeric: tabular-nums; }
 footer { margin-top: 3em; font-size: 0.85em; color: #777; }
 @media print {

@@ -236,6 +236,39 @@ pub(super) struct XLabels {
     pub(super) every: usize,
     /// Rotate labels by -35° (long category names).
     pub(super) rotated: bool,
+    /// Count from one (numbered categories such as cycles: label 1, then
+    /// every multiple of `every`) rather than from the first tick.
+    pub(super) counted: bool,
+}
+
+impl XLabels {
+    const ALL: Self = Self {
+        every: 1,
+        rotated: false,
+        counted: false,
+    };
+
+    /// Whether tick `k` gets its label.
+    pub(super) fn shows(&self, k: usize) -> bool {
+        if self.counted {
+            k == 0 || (k + 1) % self.every == 0
+        } else {
+            k % self.every == 0
+        }
+    }
+}
+
+/// The smallest of 1, 2, 5, 10, 20, 50, … that is at least `n`.
+fn nice_at_least(n: usize) -> usize {
+    let mut step = 1;
+    loop {
+        for m in [1, 2, 5] {
+            if m * step >= n {
+                return m * step;
+            }
+        }
+        step *= 10;
+    }
 }
 
 pub(super) const ROTATION_DEG: f64 = 35.0;
@@ -260,11 +293,18 @@ pub(super) fn x_ticks(axis: &Axis, lo: f64, hi: f64, x0: f64, x1: f64) -> (Ticks
             .fold(x1 - x0, f64::min);
         let need = widest(&r.labels) + 10.0;
         if need <= spacing {
+            return (r, XLabels::ALL);
+        }
+        let numbered = r.labels.iter().all(|l| l.parse::<f64>().is_ok());
+        if !axis.categories.is_empty() && numbered {
+            // Cycle numbers: 1, 10, 20, … read better than slanted labels.
+            let every = nice_at_least((need / spacing.max(1.0)).ceil() as usize + 1);
             return (
                 r,
                 XLabels {
-                    every: 1,
+                    every,
                     rotated: false,
+                    counted: true,
                 },
             );
         }
@@ -277,6 +317,7 @@ pub(super) fn x_ticks(axis: &Axis, lo: f64, hi: f64, x0: f64, x1: f64) -> (Ticks
                 XLabels {
                     every,
                     rotated: true,
+                    counted: false,
                 },
             );
         }
@@ -287,6 +328,7 @@ pub(super) fn x_ticks(axis: &Axis, lo: f64, hi: f64, x0: f64, x1: f64) -> (Ticks
                 XLabels {
                     every,
                     rotated: false,
+                    counted: false,
                 },
             );
         }
@@ -449,17 +491,22 @@ pub(super) fn draw_axes(out: &mut String, p: &Panel, cell: Rect, l: &Layout) {
     let mut labels = String::new();
     for (k, (&v, label)) in l.xt.values.iter().zip(&l.xt.labels).enumerate() {
         let Some(x) = l.xm.px(v) else { continue };
-        let _ = write!(marks, "M{x:.1},{:.1}v4", pl.y1);
-        if k % l.xl.every != 0 {
+        let shown = l.xl.shows(k);
+        if shown || l.xl.every == 1 || !l.xl.counted {
+            let _ = write!(marks, "M{x:.1},{:.1}v4", pl.y1);
+        }
+        if !shown {
             continue;
         }
         let y = pl.y1 + 6.0 + style::FONT_SMALL;
         if l.xl.rotated {
+            // The slant runs left: cut what would pass the panel's left edge.
+            let room = (x - cell.x0 - 2.0) / ROTATION_DEG.to_radians().cos();
             let _ = writeln!(
                 labels,
                 "<text class=\"tick\" x=\"{x:.1}\" y=\"{y:.1}\" text-anchor=\"end\" \
                  transform=\"rotate(-{ROTATION_DEG} {x:.1} {y:.1})\">{}</text>",
-                escape(label)
+                fitted(label, style::FONT_SMALL, room)
             );
         } else {
             let _ = writeln!(

@@ -266,7 +266,8 @@ pub(super) fn draw_refs(out: &mut String, p: &Panel, l: &Layout) {
         if !r.label.is_empty() {
             let _ = writeln!(
                 out,
-                "<text x=\"{tx:.1}\" y=\"{ty:.1}\" text-anchor=\"{anchor}\" fill=\"#555555\">{}</text>",
+                "<text x=\"{tx:.1}\" y=\"{ty:.1}\" text-anchor=\"{anchor}\" fill=\"#555555\" \
+                 stroke=\"#ffffff\" stroke-width=\"3\" paint-order=\"stroke\">{}</text>",
                 fitted(&r.label, style::FONT_SMALL, l.plot.w() - 8.0)
             );
         }
