@@ -1,6 +1,8 @@
 //! The `hyst` command line: one module per verb.
 
+pub mod fit;
 pub mod params;
+pub mod simulate;
 
 use clap::{Parser, Subcommand};
 
@@ -18,11 +20,17 @@ pub struct Cli {
 pub enum Command {
     /// List the parameters of a model.
     Params(params::ParamsArgs),
+    /// Fit a model to a lab record.
+    Fit(fit::FitArgs),
+    /// Drive a model with a displacement history; CSV displacement,force,tangent.
+    Simulate(simulate::SimulateArgs),
 }
 
 /// Runs a parsed command line.
 pub fn run(cli: Cli) -> anyhow::Result<()> {
     match cli.command {
+        Command::Fit(a) => fit::run(a),
         Command::Params(a) => params::run(a),
+        Command::Simulate(a) => simulate::run(a),
     }
 }

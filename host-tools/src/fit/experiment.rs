@@ -167,3 +167,46 @@ impl Experiment {
         Ok(out)
     }
 }
+
+impl Experiment {
+    /// The experiment of a lab record (canonical units mm, kN, s). A
+    /// force-driven record needs a uniform time base and the mass in kg.
+    pub fn from_record(record: &crate::data::Record, mass_kg: Option<f64>) -> anyhow::Result<Self> {
+        use crate::data::Channel;
+        use anyhow::{anyhow, bail};
+        let src = record.source().display();
+        let (u, f) = record.displacement_force()?;
+        match record.input_channel() {
+            Channel::Displacement => {
+                if mass_kg.is_some() {
+                    bail!("{src}: --mass is for force-driven records; this one is driven by displacement");
+                }
+                Ok(Experiment { input: u.to_vec(), output: f.to_vec(), drive: Drive::Displacement })
+            }
+            Channel::Force => {
+                let mass = mass_kg.ok_or_else(|| {
+                    anyhow!("{src}: the record is driven by force, so the oscillator needs its mass: give --mass KG")
+                })?;
+                if !(mass.is_finite() && mass > 0.0) {
+                    bail!("--mass must be a positive number of kg, got {mass}");
+                }
+                let t = record.time().ok_or_else(|| {
+                    anyhow!("{src}: a force-driven record needs a time column or --sample-rate")
+                })?;
+                if t.len() < 2 {
+                    bail!("{src}: a force-driven record needs at least two samples");
+                }
+                let dt = (t[t.len() - 1] - t[0]) / (t.len() - 1) as f64;
+                if let Some(i) = (1..t.len()).find(|&i| ((t[i] - t[i - 1]) - dt).abs() > 1e-6 * dt) {
+                    bail!(
+                        "{src}: sample {} is {} s after the previous one, not {dt} s: force-driven fits need uniform sampling",
+                        i + 1,
+                        t[i] - t[i - 1]
+                    );
+                }
+                // kg = N s^2/m = 1e-6 kN s^2/mm
+                Ok(Experiment { input: f.to_vec(), output: u.to_vec(), drive: Drive::Force { dt, mass: mass * 1e-6 } })
+            }
+        }
+    }
+}

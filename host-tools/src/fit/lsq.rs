@@ -97,6 +97,22 @@ pub fn minimize<F>(f: &F, x0: &[f64], lo: &[f64], hi: &[f64], opts: Options) -> 
 where
     F: Fn(&[f64]) -> Option<Vec<f64>> + Sync,
 {
+    minimize_observed(f, x0, lo, hi, opts, |_, _| {})
+}
+
+/// [`minimize`], calling `on_iter(iteration, cost)` after every accepted
+/// step (for progress display).
+pub fn minimize_observed<F>(
+    f: &F,
+    x0: &[f64],
+    lo: &[f64],
+    hi: &[f64],
+    opts: Options,
+    mut on_iter: impl FnMut(usize, f64),
+) -> Option<Solution>
+where
+    F: Fn(&[f64]) -> Option<Vec<f64>> + Sync,
+{
     let n = x0.len();
     let mut x: Vec<f64> = x0
         .iter()
@@ -162,6 +178,7 @@ where
                     c = cn;
                     mu = (mu / 3.0).max(1e-15);
                     accepted = true;
+                    on_iter(iterations, c);
                     if small {
                         break 'outer;
                     }

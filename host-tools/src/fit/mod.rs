@@ -7,4 +7,5 @@ pub mod lsq;
 pub mod objectives;
 pub mod parametrization;
 pub mod problem;
+pub mod run;
 pub mod sensitivity;

@@ -1,0 +1,159 @@
+//! `hyst fit DATA --model SPEC`: parameters of a model from a lab record.
+
+use crate::data::{self, ReadOptions};
+use crate::fit::experiment::Experiment;
+use crate::fit::problem::Problem;
+use crate::fit::run::{self, Method, Outcome, Progress};
+use crate::model::{to_json, ModelSpec};
+use anyhow::{anyhow, bail, Context, Result};
+use clap::Args;
+use indicatif::{ProgressBar, ProgressStyle};
+use serde_json::{json, Value};
+use std::path::PathBuf;
+use std::time::Instant;
+
+/// Arguments of `hyst fit`.
+#[derive(Debug, Args)]
+pub struct FitArgs {
+    /// The lab record (CSV or JSON; see the data formats in the README).
+    pub data: PathBuf,
+    /// Model spec: `bw` or `bwbn`, then `+effect` terms.
+    #[arg(long, default_value = "bw")]
+    pub model: ModelSpec,
+    /// Search method: lsq, homotopy (force-driven records), nsga2 or auto.
+    #[arg(long, default_value = "auto")]
+    pub method: String,
+    /// Hold a parameter at a value (physical units), e.g. `--fix beta=2`;
+    /// repeatable.
+    #[arg(long = "fix", value_parser = parse_fix)]
+    pub fix: Vec<(String, f64)>,
+    /// Mass in kg, for force-driven records.
+    #[arg(long)]
+    pub mass: Option<f64>,
+    /// Sample rate in Hz, for records without a time column.
+    #[arg(long)]
+    pub sample_rate: Option<f64>,
+    /// Write the fitted parameters (a parameter file) here.
+    #[arg(long)]
+    pub out: Option<PathBuf>,
+    /// Print one JSON object instead of the text summary.
+    #[arg(long)]
+    pub json: bool,
+}
+
+/// Parses `name=value`.
+pub fn parse_fix(s: &str) -> Result<(String, f64), String> {
+    let (n, v) = s.split_once('=').ok_or_else(|| format!("expected name=value, got `{s}`"))?;
+    let v: f64 = v.trim().parse().map_err(|_| format!("`{v}` in `{s}` is not a number"))?;
+    Ok((n.trim().to_string(), v))
+}
+
+/// A progress bar on standard error with the best error so far.
+pub struct Bar(ProgressBar);
+
+impl Bar {
+    /// A spinner labelled `what`, hidden when `quiet`.
+    pub fn new(what: &str, quiet: bool) -> Bar {
+        let pb = if quiet { ProgressBar::hidden() } else { ProgressBar::new_spinner() };
+        pb.set_style(ProgressStyle::with_template("{spinner} {elapsed:>4} {prefix} {msg}").expect("valid template"));
+        pb.set_prefix(what.to_string());
+        pb.enable_steady_tick(std::time::Duration::from_millis(120));
+        Bar(pb)
+    }
+    /// Removes the bar.
+    pub fn finish(&self) {
+        self.0.finish_and_clear();
+    }
+}
+
+impl Progress for Bar {
+    fn improved(&self, evaluations: usize, nrmse: f64) {
+        self.0.set_message(format!("{evaluations} simulations, best NRMSE {nrmse:.4e}"));
+    }
+    fn stage(&self, message: &str) {
+        self.0.println(format!("  {message}"));
+    }
+}
+
+/// Reads a record for fitting.
+pub fn load(path: &PathBuf, sample_rate: Option<f64>, mass: Option<f64>) -> Result<Experiment> {
+    let mut opts = ReadOptions::default();
+    if let Some(hz) = sample_rate {
+        opts = opts.sample_rate(hz);
+    }
+    let record = data::read(path, &opts)?;
+    for n in record.notices() {
+        eprintln!("note: {n}");
+    }
+    Experiment::from_record(&record, mass)
+}
+
+/// The fit as a parameter file with its `fit` metadata.
+pub fn fit_json(problem: &Problem, outcome: &Outcome, data: &std::path::Path, seconds: f64) -> Result<Value> {
+    let (params, xi) = problem.par.build(&outcome.x).map_err(|e| anyhow!("fitted set rejected: {e}"))?;
+    let mut extra = vec![];
+    if let crate::fit::experiment::Drive::Force { mass, .. } = problem.exp.drive {
+        extra.push(("xi", xi));
+        extra.push(("m", mass * 1e6));
+    }
+    let meta = json!({
+        "data": data.display().to_string(),
+        "method": outcome.method,
+        "nrmse": outcome.scores.nrmse,
+        "ortiz": outcome.scores.ortiz,
+        "simulations": outcome.evaluations,
+        "seconds": seconds,
+        "identifiability": outcome.identifiability,
+    });
+    Ok(to_json(problem.par.spec, &params, &extra, Some(("mm", "kN")), Some(meta)))
+}
+
+/// Runs `hyst fit`.
+pub fn run(args: FitArgs) -> Result<()> {
+    let exp = load(&args.data, args.sample_rate, args.mass)?;
+    let problem = Problem::new(args.model, exp, &args.fix)?;
+    if problem.dim() == 0 {
+        bail!("every parameter of {} is fixed: nothing to fit", args.model);
+    }
+    let method: Method = args.method.parse()?;
+    let bar = Bar::new(&format!("fit {} ({method})", args.model), args.json);
+    let t0 = Instant::now();
+    let outcome = run::fit(&problem, method, &problem.par.default_start(), &bar)?;
+    bar.finish();
+    let seconds = t0.elapsed().as_secs_f64();
+    let file = fit_json(&problem, &outcome, &args.data, seconds)?;
+    if let Some(out) = &args.out {
+        std::fs::write(out, serde_json::to_string_pretty(&file)? + "\n")
+            .with_context(|| format!("{}: cannot write", out.display()))?;
+    }
+    if args.json {
+        let mut obj = json!({
+            "model": args.model.to_string(),
+            "nrmse": outcome.scores.nrmse,
+            "ortiz": outcome.scores.ortiz,
+            "method": outcome.method,
+            "simulations": outcome.evaluations,
+            "seconds": seconds,
+            "identifiability": outcome.identifiability,
+            "identifiability_summary": outcome.identifiability.summary(),
+        });
+        obj["params"] = file.as_object().map(|m| {
+            m.iter()
+                .filter(|(k, _)| !["model", "units", "fit"].contains(&k.as_str()))
+                .map(|(k, v)| (k.clone(), v.clone()))
+                .collect::<serde_json::Map<_, _>>()
+        }).into();
+        println!("{}", serde_json::to_string_pretty(&obj)?);
+    } else {
+        println!("model {}  method {}  NRMSE {:.4e}  ({} simulations, {seconds:.2} s)", args.model, outcome.method, outcome.scores.nrmse, outcome.evaluations);
+        for (name, v) in &outcome.values {
+            let fixed = if problem.par.fixed.contains_key(name) { "  (fixed)" } else { "" };
+            println!("  {name:<10} {v:>14.6e}{fixed}");
+        }
+        println!("{}", outcome.identifiability.summary());
+        if let Some(out) = &args.out {
+            println!("parameters written to {}", out.display());
+        }
+    }
+    Ok(())
+}
