@@ -1,6 +1,6 @@
 //! `f64`: the host arithmetic, with `libm`'s correctly rounded-or-nearly functions.
 
-use super::Scalar;
+use super::{fastmath, Scalar};
 
 impl Scalar for f64 {
     const ZERO: Self = 0.0;
@@ -43,14 +43,11 @@ impl Scalar for f64 {
     }
     #[inline]
     fn powf(self, y: Self) -> Self {
-        if self == 0.0 {
-            return 0.0;
-        }
-        libm::pow(self, y)
+        fastmath::f64::pow(self, y)
     }
     #[inline]
     fn exp(self) -> Self {
-        libm::exp(self)
+        fastmath::f64::exp(self)
     }
     #[inline]
     fn sqrt(self) -> Self {
