@@ -212,18 +212,18 @@ fn pow_core(xb: u64, eoff: i64, y: f64) -> f64 {
     // significant bits, e at most 11.
     let ef = e as f64;
     let yh = f64::from_bits(y.to_bits() & 0xffff_ffff_f800_0000);
-    let yl = y - yh;
     let t1 = yh * ef;
+    let t2 = (y - yh) * ef;
     let p = y * log2m;
     // k = round(32 y log2 x); the rest g = 32 y log2 x - k is gathered so that only
     // additions of size |g| <= 1/2 round.
-    let kt = (t1 + p) * 32.0 + SHIFT;
+    let kt = (t1 + (p + t2)) * 32.0 + SHIFT;
     let k = kt.to_bits() as i64 - SHIFT.to_bits() as i64;
     let kf = kt - SHIFT;
     if (k + 35_000) as u64 > 70_000 {
-        return pow_out_of_range(t1 + p);
+        return pow_out_of_range(t1 + (p + t2));
     }
-    let g = ((t1 * 32.0 - kf) + p * 32.0) + yl * ef * 32.0;
+    let g = ((t1 * 32.0 - kf) + p * 32.0) + t2 * 32.0;
     exp_kernel(k, g * LN2_32)
 }
 
