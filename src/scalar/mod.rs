@@ -82,7 +82,8 @@ pub trait Scalar:
     fn is_finite(self) -> bool;
     /// |x|
     fn abs(self) -> Self;
-    /// `x^y` for `x >= 0`. Returns 0 for `x == 0` and `y > 0`.
+    /// `x^y` for `x >= 0`. Returns 0 for `x == 0` and `y > 0`. (The float
+    /// implementations follow C99 elsewhere: `x^0 = 1`, `0^y = inf` for `y < 0`.)
     fn powf(self, y: Self) -> Self;
     /// e^x
     fn exp(self) -> Self;
