@@ -18,6 +18,9 @@
 // is true for NaN, `r > tol` is not.
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 
+#[cfg(feature = "std")]
+extern crate std;
+
 pub mod bwbn;
 mod element;
 pub mod scalar;

@@ -4,7 +4,7 @@
 //! built for an FPU that cannot do double precision (a soft-float `f64` operation
 //! costs about 40 times its `f32` counterpart on the M4F).
 
-use super::Scalar;
+use super::{fastmath, Scalar};
 
 impl Scalar for f32 {
     const ZERO: Self = 0.0;
@@ -48,14 +48,11 @@ impl Scalar for f32 {
     }
     #[inline]
     fn powf(self, y: Self) -> Self {
-        if self == 0.0 {
-            return 0.0;
-        }
-        libm::powf(self, y)
+        fastmath::f32::powf(self, y)
     }
     #[inline]
     fn exp(self) -> Self {
-        libm::expf(self)
+        fastmath::f32::expf(self)
     }
     #[inline]
     fn sqrt(self) -> Self {

@@ -1,5 +1,13 @@
-//! `f64`: the host arithmetic, with `libm`'s correctly rounded-or-nearly functions.
+//! `f64`: the host arithmetic.
+//!
+//! `x^y` and `e^x` come from `fastmath` (within 1e-15 and 3.5e-16 relative, about
+//! 3.3 and 1.8 times faster than `libm`), or, with the `std` feature, from the
+//! standard library, which on x86-64 Linux (glibc, with FMA when the CPU has it)
+//! is as fast in throughput and about 25-40 % shorter in latency (see
+//! `benches/math.rs`).
 
+#[cfg(not(feature = "std"))]
+use super::fastmath;
 use super::Scalar;
 
 impl Scalar for f64 {
@@ -41,16 +49,25 @@ impl Scalar for f64 {
     fn abs(self) -> Self {
         libm::fabs(self)
     }
+    #[cfg(not(feature = "std"))]
     #[inline]
     fn powf(self, y: Self) -> Self {
-        if self == 0.0 {
-            return 0.0;
-        }
-        libm::pow(self, y)
+        fastmath::f64::pow(self, y)
     }
+    #[cfg(feature = "std")]
+    #[inline]
+    fn powf(self, y: Self) -> Self {
+        std::primitive::f64::powf(self, y)
+    }
+    #[cfg(not(feature = "std"))]
     #[inline]
     fn exp(self) -> Self {
-        libm::exp(self)
+        fastmath::f64::exp(self)
+    }
+    #[cfg(feature = "std")]
+    #[inline]
+    fn exp(self) -> Self {
+        std::primitive::f64::exp(self)
     }
     #[inline]
     fn sqrt(self) -> Self {

@@ -9,15 +9,16 @@
 //!
 //! The transcendental functions a hysteresis model needs (`|z|^n`, `exp`, `sqrt`)
 //! are part of the trait so that each arithmetic uses the implementation that is
-//! right for it: `libm` for `f64`, measured approximations for `f32` and the
-//! fixed-point type (see `docs/benchmarks.md` and the accuracy tests in each
-//! module).
+//! right for it: table-driven `pow`/`exp` for `f64`, table-free ones counted in
+//! instructions for `f32` (both in `fastmath`), integer ones for the fixed-point
+//! type (see `docs/benchmarks.md` and the accuracy tests in each module).
 //!
 //! Non-finite values have one meaning in every arithmetic: [`Scalar::is_finite`]
 //! is false for NaN and infinities, and for a fixed-point value that has
 //! saturated. Models check their results with it and refuse to commit a state
 //! that is not finite.
 
+mod fastmath;
 mod fixed;
 mod float32;
 mod float64;
@@ -81,7 +82,8 @@ pub trait Scalar:
     fn is_finite(self) -> bool;
     /// |x|
     fn abs(self) -> Self;
-    /// `x^y` for `x >= 0`. Returns 0 for `x == 0` and `y > 0`.
+    /// `x^y` for `x >= 0`. Returns 0 for `x == 0` and `y > 0`. (The float
+    /// implementations follow C99 elsewhere: `x^0 = 1`, `0^y = inf` for `y < 0`.)
     fn powf(self, y: Self) -> Self;
     /// e^x
     fn exp(self) -> Self;
