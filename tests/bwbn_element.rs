@@ -268,3 +268,49 @@ fn hardening_sets_are_legal_and_diverge_with_an_error_not_a_nan() {
     assert_eq!(el.set_trial(3.0), Err(StepError::NonFiniteState));
     assert_eq!(*el.committed(), committed);
 }
+
+/// Asymmetry (not in the thesis): z tends to Zu (1 + a) on the positive side
+/// and -Zu (1 - a) on the negative; the springs are (1 + b) k0 and (1 - b) k0,
+/// and the force stays continuous through u = 0 and z = 0.
+#[test]
+fn asymmetry_gives_unequal_strength_and_stiffness() {
+    let (a, b) = (0.25, 0.1);
+    let p = named(
+        EffectSet::NONE.with(EffectKind::Asymmetry),
+        &[("asym_strength", a), ("asym_stiffness", b)],
+    );
+    let mut el = Bwbn::new(p);
+    let ups: Vec<f64> = (1..=400).map(|i| i as f64 * 0.05).collect();
+    let downs: Vec<f64> = (1..=800).map(|i| 20.0 - i as f64 * 0.05).collect();
+    drive(&mut el, &ups);
+    assert!(
+        (el.committed().z - (1.0 + a)).abs() < 1e-6,
+        "z+ = {}",
+        el.committed().z
+    );
+    // post-yield tangent on the positive side: alpha k0 (1 + b)
+    assert!((el.response().tangent - 1.2 * (1.0 + b)).abs() < 1e-5);
+    let forces = drive(&mut el, &downs);
+    assert!(
+        (el.committed().z + (1.0 - a)).abs() < 1e-6,
+        "z- = {}",
+        el.committed().z
+    );
+    assert!((el.response().tangent - 1.2 * (1.0 - b)).abs() < 1e-5);
+    // continuity: no jump between consecutive 0.05 mm steps larger than the
+    // stiffest spring allows
+    let kmax = 6.0 * (1.0 + b) * 4.0;
+    for w in forces.windows(2) {
+        assert!(
+            (w[1] - w[0]).abs() < kmax * 0.05,
+            "force jumped from {} to {}",
+            w[0],
+            w[1]
+        );
+    }
+    // with a = b = 0 the response is the plain one, bit for bit
+    let off = named(EffectSet::NONE.with(EffectKind::Asymmetry), &[]);
+    let mut plain = Bwbn::new(named(EffectSet::NONE, &[]));
+    let mut zero = Bwbn::new(off);
+    assert_eq!(drive(&mut plain, &ups), drive(&mut zero, &ups));
+}

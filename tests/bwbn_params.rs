@@ -201,14 +201,32 @@ fn thesis_table_3_4_is_valid_only_in_its_energy_range() {
 
 #[test]
 fn every_combination_of_effects_builds_with_its_off_values() {
-    for bits in 0..16u8 {
+    for bits in 0..32u8 {
         let set = EffectSet::from_bits(bits).unwrap();
         let p = build(set, &[]).unwrap();
         assert_eq!(p.effect_set(), set);
         let expected = 5 + set.iter().map(|k| k.params().len()).sum::<usize>();
         assert_eq!(p.len(), expected);
     }
-    assert_eq!(EffectSet::from_bits(16), None);
+    assert_eq!(EffectSet::from_bits(32), None);
+}
+
+#[test]
+fn asymmetry_factors_must_lie_strictly_between_minus_one_and_one() {
+    let asym = with(EffectKind::Asymmetry);
+    build(asym, &[("asym_strength", 0.5), ("asym_stiffness", -0.3)]).unwrap();
+    assert_eq!(
+        err(asym, &[("asym_strength", 1.0)]),
+        ("asym_strength", Rule::NotAFraction)
+    );
+    assert_eq!(
+        err(asym, &[("asym_stiffness", -1.0)]),
+        ("asym_stiffness", Rule::NotAFraction)
+    );
+    assert_eq!(
+        err(asym, &[("asym_stiffness", f64::NAN)]),
+        ("asym_stiffness", Rule::NotFinite)
+    );
 }
 
 #[test]

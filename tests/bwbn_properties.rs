@@ -152,7 +152,7 @@ proptest! {
     #![proptest_config(ProptestConfig { cases: 400, ..ProptestConfig::default() })]
 
     #[test]
-    fn adversarial_histories_f64(bits in 0u8..16, v in param_values(), h in history()) {
+    fn adversarial_histories_f64(bits in 0u8..32, v in param_values(), h in history()) {
         if let Some(p) = params(bits, &v) {
             check(Bwbn::new(p), &h)?;
             check(Bwbn::new(p).with_control(Control::opensees(1e-10, 50)), &h)?;
@@ -161,7 +161,7 @@ proptest! {
     }
 
     #[test]
-    fn adversarial_histories_f32_and_fixed(bits in 0u8..16, v in param_values(), h in history()) {
+    fn adversarial_histories_f32_and_fixed(bits in 0u8..32, v in param_values(), h in history()) {
         if let Some(p) = params(bits, &v) {
             if let Ok(p32) = BwbnParams::<f32>::from_named(p.effect_set(), |n| p.get(n).map(|x| x as f32)) {
                 check(Bwbn::new(p32), &h)?;

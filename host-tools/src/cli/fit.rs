@@ -43,8 +43,13 @@ pub struct FitArgs {
 
 /// Parses `name=value`.
 pub fn parse_fix(s: &str) -> Result<(String, f64), String> {
-    let (n, v) = s.split_once('=').ok_or_else(|| format!("expected name=value, got `{s}`"))?;
-    let v: f64 = v.trim().parse().map_err(|_| format!("`{v}` in `{s}` is not a number"))?;
+    let (n, v) = s
+        .split_once('=')
+        .ok_or_else(|| format!("expected name=value, got `{s}`"))?;
+    let v: f64 = v
+        .trim()
+        .parse()
+        .map_err(|_| format!("`{v}` in `{s}` is not a number"))?;
     Ok((n.trim().to_string(), v))
 }
 
@@ -54,8 +59,15 @@ pub struct Bar(ProgressBar);
 impl Bar {
     /// A spinner labelled `what`, hidden when `quiet`.
     pub fn new(what: &str, quiet: bool) -> Bar {
-        let pb = if quiet { ProgressBar::hidden() } else { ProgressBar::new_spinner() };
-        pb.set_style(ProgressStyle::with_template("{spinner} {elapsed:>4} {prefix} {msg}").expect("valid template"));
+        let pb = if quiet {
+            ProgressBar::hidden()
+        } else {
+            ProgressBar::new_spinner()
+        };
+        pb.set_style(
+            ProgressStyle::with_template("{spinner} {elapsed:>4} {prefix} {msg}")
+                .expect("valid template"),
+        );
         pb.set_prefix(what.to_string());
         pb.enable_steady_tick(std::time::Duration::from_millis(120));
         Bar(pb)
@@ -68,7 +80,8 @@ impl Bar {
 
 impl Progress for Bar {
     fn improved(&self, evaluations: usize, nrmse: f64) {
-        self.0.set_message(format!("{evaluations} simulations, best NRMSE {nrmse:.4e}"));
+        self.0
+            .set_message(format!("{evaluations} simulations, best NRMSE {nrmse:.4e}"));
     }
     fn stage(&self, message: &str) {
         self.0.println(format!("  {message}"));
@@ -89,8 +102,16 @@ pub fn load(path: &PathBuf, sample_rate: Option<f64>, mass: Option<f64>) -> Resu
 }
 
 /// The fit as a parameter file with its `fit` metadata.
-pub fn fit_json(problem: &Problem, outcome: &Outcome, data: &std::path::Path, seconds: f64) -> Result<Value> {
-    let (params, xi) = problem.par.build(&outcome.x).map_err(|e| anyhow!("fitted set rejected: {e}"))?;
+pub fn fit_json(
+    problem: &Problem,
+    outcome: &Outcome,
+    data: &std::path::Path,
+    seconds: f64,
+) -> Result<Value> {
+    let (params, xi) = problem
+        .par
+        .build(&outcome.x)
+        .map_err(|e| anyhow!("fitted set rejected: {e}"))?;
     let mut extra = vec![];
     if let crate::fit::experiment::Drive::Force { mass, .. } = problem.exp.drive {
         extra.push(("xi", xi));
@@ -105,7 +126,13 @@ pub fn fit_json(problem: &Problem, outcome: &Outcome, data: &std::path::Path, se
         "seconds": seconds,
         "identifiability": outcome.identifiability,
     });
-    Ok(to_json(problem.par.spec, &params, &extra, Some(("mm", "kN")), Some(meta)))
+    Ok(to_json(
+        problem.par.spec,
+        &params,
+        &extra,
+        Some(("mm", "kN")),
+        Some(meta),
+    ))
 }
 
 /// Runs `hyst fit`.
@@ -137,17 +164,27 @@ pub fn run(args: FitArgs) -> Result<()> {
             "identifiability": outcome.identifiability,
             "identifiability_summary": outcome.identifiability.summary(),
         });
-        obj["params"] = file.as_object().map(|m| {
-            m.iter()
-                .filter(|(k, _)| !["model", "units", "fit"].contains(&k.as_str()))
-                .map(|(k, v)| (k.clone(), v.clone()))
-                .collect::<serde_json::Map<_, _>>()
-        }).into();
+        obj["params"] = file
+            .as_object()
+            .map(|m| {
+                m.iter()
+                    .filter(|(k, _)| !["model", "units", "fit"].contains(&k.as_str()))
+                    .map(|(k, v)| (k.clone(), v.clone()))
+                    .collect::<serde_json::Map<_, _>>()
+            })
+            .into();
         println!("{}", serde_json::to_string_pretty(&obj)?);
     } else {
-        println!("model {}  method {}  NRMSE {:.4e}  ({} simulations, {seconds:.2} s)", args.model, outcome.method, outcome.scores.nrmse, outcome.evaluations);
+        println!(
+            "model {}  method {}  NRMSE {:.4e}  ({} simulations, {seconds:.2} s)",
+            args.model, outcome.method, outcome.scores.nrmse, outcome.evaluations
+        );
         for (name, v) in &outcome.values {
-            let fixed = if problem.par.fixed.contains_key(name) { "  (fixed)" } else { "" };
+            let fixed = if problem.par.fixed.contains_key(name) {
+                "  (fixed)"
+            } else {
+                ""
+            };
             println!("  {name:<10} {v:>14.6e}{fixed}");
         }
         println!("{}", outcome.identifiability.summary());

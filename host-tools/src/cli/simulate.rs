@@ -49,9 +49,16 @@ pub struct Simulation {
 /// Runs the element over a displacement history.
 pub fn simulate(params: &hysteresis::bwbn::BwbnParams<f64>, u: &[f64]) -> Result<Simulation> {
     let mut el = Bwbn::new(*params);
-    let mut s = Simulation { displacement: vec![], force: vec![], tangent: vec![], energy: vec![] };
+    let mut s = Simulation {
+        displacement: vec![],
+        force: vec![],
+        tangent: vec![],
+        energy: vec![],
+    };
     for (i, &ui) in u.iter().enumerate() {
-        let r = el.set_trial(ui).map_err(|e| anyhow!("step to sample {} (u = {ui} mm): {e}", i + 1))?;
+        let r = el
+            .set_trial(ui)
+            .map_err(|e| anyhow!("step to sample {} (u = {ui} mm): {e}", i + 1))?;
         el.commit();
         s.displacement.push(ui);
         s.force.push(r.force);
@@ -66,7 +73,10 @@ pub fn run(args: SimulateArgs) -> Result<()> {
     let file = ParamFile::read(&args.params)?;
     let spec = file.spec(args.model)?;
     let params = file.build(spec, false)?;
-    let record = data::read(&args.history, &ReadOptions::default().input(Channel::Displacement))?;
+    let record = data::read(
+        &args.history,
+        &ReadOptions::default().input(Channel::Displacement),
+    )?;
     for n in record.notices() {
         eprintln!("note: {n}");
     }
@@ -75,13 +85,19 @@ pub fn run(args: SimulateArgs) -> Result<()> {
         .ok_or_else(|| anyhow!("{}: no displacement column", args.history.display()))?;
     let sim = simulate(&params, u)?;
     let mut out: Box<dyn Write> = match &args.out {
-        Some(p) => Box::new(std::fs::File::create(p).with_context(|| format!("{}: cannot create", p.display()))?),
+        Some(p) => Box::new(
+            std::fs::File::create(p).with_context(|| format!("{}: cannot create", p.display()))?,
+        ),
         None => Box::new(std::io::stdout().lock()),
     };
     data::write_columns(
         &mut out,
         &[],
-        &[("displacement", &sim.displacement), ("force", &sim.force), ("tangent", &sim.tangent)],
+        &[
+            ("displacement", &sim.displacement),
+            ("force", &sim.force),
+            ("tangent", &sim.tangent),
+        ],
     )?;
     if let Some(path) = &args.plot {
         let name = spec.to_string();
@@ -90,8 +106,13 @@ pub fn run(args: SimulateArgs) -> Result<()> {
             traces.push(Trace::measured("measured", u, f));
         }
         traces.push(Trace::model(&name, &sim.displacement, &sim.force));
-        let fig = loop_overlay(&traces, Quantity::new("Displacement", "mm"), Quantity::new("Force", "kN"))?;
-        std::fs::write(path, fig.to_svg()).with_context(|| format!("{}: cannot write", path.display()))?;
+        let fig = loop_overlay(
+            &traces,
+            Quantity::new("Displacement", "mm"),
+            Quantity::new("Force", "kN"),
+        )?;
+        std::fs::write(path, fig.to_svg())
+            .with_context(|| format!("{}: cannot write", path.display()))?;
     }
     Ok(())
 }

@@ -181,7 +181,11 @@ impl Experiment {
                 if mass_kg.is_some() {
                     bail!("{src}: --mass is for force-driven records; this one is driven by displacement");
                 }
-                Ok(Experiment { input: u.to_vec(), output: f.to_vec(), drive: Drive::Displacement })
+                Ok(Experiment {
+                    input: u.to_vec(),
+                    output: f.to_vec(),
+                    drive: Drive::Displacement,
+                })
             }
             Channel::Force => {
                 let mass = mass_kg.ok_or_else(|| {
@@ -197,7 +201,8 @@ impl Experiment {
                     bail!("{src}: a force-driven record needs at least two samples");
                 }
                 let dt = (t[t.len() - 1] - t[0]) / (t.len() - 1) as f64;
-                if let Some(i) = (1..t.len()).find(|&i| ((t[i] - t[i - 1]) - dt).abs() > 1e-6 * dt) {
+                if let Some(i) = (1..t.len()).find(|&i| ((t[i] - t[i - 1]) - dt).abs() > 1e-6 * dt)
+                {
                     bail!(
                         "{src}: sample {} is {} s after the previous one, not {dt} s: force-driven fits need uniform sampling",
                         i + 1,
@@ -205,7 +210,14 @@ impl Experiment {
                     );
                 }
                 // kg = N s^2/m = 1e-6 kN s^2/mm
-                Ok(Experiment { input: f.to_vec(), output: u.to_vec(), drive: Drive::Force { dt, mass: mass * 1e-6 } })
+                Ok(Experiment {
+                    input: f.to_vec(),
+                    output: u.to_vec(),
+                    drive: Drive::Force {
+                        dt,
+                        mass: mass * 1e-6,
+                    },
+                })
             }
         }
     }

@@ -92,13 +92,23 @@ pub fn starts(x0: &[f64], lo: &[f64], hi: &[f64], count: usize, seed: u64) -> Ve
     };
     let mut out = vec![x0.to_vec()];
     while out.len() < count {
-        out.push(lo.iter().zip(hi).map(|(l, h)| l + (h - l) * (0.25 + 0.5 * next())).collect());
+        out.push(
+            lo.iter()
+                .zip(hi)
+                .map(|(l, h)| l + (h - l) * (0.25 + 0.5 * next()))
+                .collect(),
+        );
     }
     out
 }
 
 /// Fits `problem` from `x0` with `method`.
-pub fn fit(problem: &Problem, method: Method, x0: &[f64], progress: &dyn Progress) -> Result<Outcome> {
+pub fn fit(
+    problem: &Problem,
+    method: Method,
+    x0: &[f64],
+    progress: &dyn Progress,
+) -> Result<Outcome> {
     let (lo, hi) = problem.par.bounds();
     let evals = AtomicUsize::new(0);
     let best = Mutex::new(f64::INFINITY);
@@ -122,7 +132,8 @@ pub fn fit(problem: &Problem, method: Method, x0: &[f64], progress: &dyn Progres
                 .par_iter()
                 .enumerate()
                 .filter_map(|(i, s)| {
-                    let sol = lsq::minimize_observed(&residuals, s, &lo, &hi, opts, |_, c| report(c));
+                    let sol =
+                        lsq::minimize_observed(&residuals, s, &lo, &hi, opts, |_, c| report(c));
                     progress.stage(&format!("start {} of {} done", i + 1, all.len()));
                     sol
                 })
@@ -140,28 +151,47 @@ pub fn fit(problem: &Problem, method: Method, x0: &[f64], progress: &dyn Progres
                 evals.fetch_add(1, Ordering::Relaxed);
                 problem.residuals_coupled(x, lambda)
             };
-            homotopy::run(&coupled, x0, &lo, &hi, &homotopy::linear_schedule(10), opts, |s| {
-                progress.stage(&format!("lambda {:.1}: cost {:.3e}", s.lambda, s.cost));
-                if s.lambda == 0.0 {
-                    report(s.cost);
-                }
-            })
+            homotopy::run(
+                &coupled,
+                x0,
+                &lo,
+                &hi,
+                &homotopy::linear_schedule(10),
+                opts,
+                |s| {
+                    progress.stage(&format!("lambda {:.1}: cost {:.3e}", s.lambda, s.cost));
+                    if s.lambda == 0.0 {
+                        report(s.cost);
+                    }
+                },
+            )
             .map(|p| p.solution)
         }
     };
     let sol = solution.ok_or_else(|| {
         anyhow!("the model could not be simulated from the starting point; check the fixed parameters and bounds")
     })?;
-    finish(problem, &method.to_string(), sol, evals.load(Ordering::Relaxed))
+    finish(
+        problem,
+        &method.to_string(),
+        sol,
+        evals.load(Ordering::Relaxed),
+    )
 }
 
 /// Scores and identifiability of a least-squares solution.
-pub fn finish(problem: &Problem, method: &str, sol: lsq::Solution, evaluations: usize) -> Result<Outcome> {
+pub fn finish(
+    problem: &Problem,
+    method: &str,
+    sol: lsq::Solution,
+    evaluations: usize,
+) -> Result<Outcome> {
     let scores = problem
         .scores(&sol.x)
         .ok_or_else(|| anyhow!("the fitted parameters cannot be simulated"))?;
     let names = problem.par.names();
-    let identifiability = identifiability::analyse(&sol.jacobian, &names, &sol.x, sol.cost, sol.residuals.len());
+    let identifiability =
+        identifiability::analyse(&sol.jacobian, &names, &sol.x, sol.cost, sol.residuals.len());
     Ok(Outcome {
         method: method.to_string(),
         values: problem.par.physical(&sol.x),

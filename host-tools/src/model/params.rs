@@ -45,34 +45,61 @@ impl ParamFile {
     /// against a model by [`ParamFile::build`]).
     pub fn read(path: impl AsRef<Path>) -> Result<Self> {
         let path = path.as_ref();
-        let text = std::fs::read_to_string(path).with_context(|| format!("{}: cannot read", path.display()))?;
+        let text = std::fs::read_to_string(path)
+            .with_context(|| format!("{}: cannot read", path.display()))?;
         Self::parse(path, &text)
     }
 
     /// Parses the text of a parameter file.
     pub fn parse(path: &Path, text: &str) -> Result<Self> {
         let value: Value = serde_json::from_str(text).map_err(|e| {
-            anyhow!("{}:{}:{}: not valid JSON: {e}", path.display(), e.line(), e.column())
+            anyhow!(
+                "{}:{}:{}: not valid JSON: {e}",
+                path.display(),
+                e.line(),
+                e.column()
+            )
         })?;
         let Value::Object(map) = value else {
-            bail!("{}: expected a JSON object of parameters, found {}", path.display(), kind(&value));
+            bail!(
+                "{}: expected a JSON object of parameters, found {}",
+                path.display(),
+                kind(&value)
+            );
         };
-        let mut file = ParamFile { path: path.to_path_buf(), ..Default::default() };
+        let mut file = ParamFile {
+            path: path.to_path_buf(),
+            ..Default::default()
+        };
         for (key, v) in map {
             match (key.as_str(), v) {
                 ("model", Value::String(s)) => {
-                    file.model = Some(ModelSpec::parse(&s).with_context(|| format!("{}: key \"model\"", path.display()))?)
+                    file.model = Some(
+                        ModelSpec::parse(&s)
+                            .with_context(|| format!("{}: key \"model\"", path.display()))?,
+                    )
                 }
                 ("units", Value::Object(u)) => file.units = Some(u),
                 ("fit", v) => file.fit = Some(v),
-                (k, v) if META.contains(&k) => bail!("{}: key \"{k}\" has the wrong type ({})", path.display(), kind(&v)),
+                (k, v) if META.contains(&k) => bail!(
+                    "{}: key \"{k}\" has the wrong type ({})",
+                    path.display(),
+                    kind(&v)
+                ),
                 (_, Value::Number(n)) => {
                     let x = n.as_f64().filter(|x| x.is_finite()).ok_or_else(|| {
-                        anyhow!("{}: parameter \"{key}\" is not a finite number", path.display())
+                        anyhow!(
+                            "{}: parameter \"{key}\" is not a finite number",
+                            path.display()
+                        )
                     })?;
                     file.values.insert(key, x);
                 }
-                (_, v) => bail!("{}: parameter \"{key}\" must be a number, found {}", path.display(), kind(&v)),
+                (_, v) => bail!(
+                    "{}: parameter \"{key}\" must be a number, found {}",
+                    path.display(),
+                    kind(&v)
+                ),
             }
         }
         Ok(file)
@@ -88,23 +115,33 @@ impl ParamFile {
             ),
             (Some(c), _) => Ok(c),
             (None, Some(f)) => Ok(f),
-            (None, None) => bail!("no model: give --model or a \"model\" key in {}", self.path.display()),
+            (None, None) => bail!(
+                "no model: give --model or a \"model\" key in {}",
+                self.path.display()
+            ),
         }
     }
 
     /// The model parameter set of `spec` (validated), rejecting names that do
     /// not belong to it. `dynamic` allows `m` and `xi`.
     pub fn build(&self, spec: ModelSpec, dynamic: bool) -> Result<BwbnParams<f64>> {
-        let known: Vec<&str> = specs(spec.effects).map(|s| s.name).chain([ENERGY_LIMIT]).collect();
+        let known: Vec<&str> = specs(spec.effects)
+            .map(|s| s.name)
+            .chain([ENERGY_LIMIT])
+            .collect();
         for name in self.values.keys() {
-            let ok = known.contains(&name.as_str()) || (dynamic && DYNAMIC.contains(&name.as_str()));
+            let ok =
+                known.contains(&name.as_str()) || (dynamic && DYNAMIC.contains(&name.as_str()));
             if !ok {
                 let hint = if DYNAMIC.contains(&name.as_str()) {
                     " (it belongs to force-driven dynamics)".to_string()
                 } else {
                     format!("; model {spec} has {}", known.join(", "))
                 };
-                bail!("{}: \"{name}\" is not a parameter of model {spec}{hint}", self.path.display());
+                bail!(
+                    "{}: \"{name}\" is not a parameter of model {spec}{hint}",
+                    self.path.display()
+                );
             }
         }
         BwbnParams::from_named(spec.effects, |n| self.values.get(n).copied())
@@ -144,7 +181,10 @@ pub fn to_json(
         map.insert((*k).into(), Value::from(*v));
     }
     if let Some((d, f)) = units {
-        map.insert("units".into(), serde_json::json!({"displacement": d, "force": f}));
+        map.insert(
+            "units".into(),
+            serde_json::json!({"displacement": d, "force": f}),
+        );
     }
     if let Some(fit) = fit {
         map.insert("fit".into(), fit);
@@ -166,7 +206,11 @@ mod tests {
         let spec = f.spec(None).unwrap();
         let p = f.build(spec, false).unwrap();
         assert_eq!(p.get("zeta0"), Some(0.5));
-        assert_eq!(p.get("lambda"), Some(0.5), "missing effect parameters take their off values");
+        assert_eq!(
+            p.get("lambda"),
+            Some(0.5),
+            "missing effect parameters take their off values"
+        );
         let back = to_json(spec, &p, &[], Some(("mm", "kN")), None);
         let again = parse(&back.to_string()).unwrap();
         assert_eq!(again.build(again.spec(None).unwrap(), false).unwrap(), p);
@@ -174,17 +218,33 @@ mod tests {
 
     #[test]
     fn errors_name_the_file_and_the_problem() {
-        let msg = |t: &str| parse(t).and_then(|f| f.build(f.spec(Some(ModelSpec::BW))?, false)).unwrap_err().to_string();
-        assert!(msg("[1, 2]").contains("p.json: expected a JSON object of parameters, found an array"));
-        assert!(msg(r#"{"k0": "six"}"#).contains("parameter \"k0\" must be a number, found a string"));
+        let msg = |t: &str| {
+            parse(t)
+                .and_then(|f| f.build(f.spec(Some(ModelSpec::BW))?, false))
+                .unwrap_err()
+                .to_string()
+        };
+        assert!(
+            msg("[1, 2]").contains("p.json: expected a JSON object of parameters, found an array")
+        );
+        assert!(
+            msg(r#"{"k0": "six"}"#).contains("parameter \"k0\" must be a number, found a string")
+        );
         assert!(msg("{\"k0\": 6,\n \"alpha\": }").starts_with("p.json:2:"));
         let m = msg(r#"{"k0": 6, "alpha": 0.2, "n": 1.2, "beta": 2, "gamma": -1, "zeta0": 0.5}"#);
-        assert!(m.contains("\"zeta0\" is not a parameter of model bw"), "{m}");
+        assert!(
+            m.contains("\"zeta0\" is not a parameter of model bw"),
+            "{m}"
+        );
         let m = msg(r#"{"k0": 6, "alpha": 1.2, "n": 1.2, "beta": 2, "gamma": -1}"#);
         assert_eq!(m, "p.json: alpha must lie in [0, 1]");
         let m = msg(r#"{"k0": 6, "alpha": 0.2, "n": 1.2, "beta": 2}"#);
         assert_eq!(m, "p.json: gamma is required but missing");
-        let m = parse(r#"{"model": "bwbn"}"#).unwrap().spec(Some(ModelSpec::BW)).unwrap_err().to_string();
+        let m = parse(r#"{"model": "bwbn"}"#)
+            .unwrap()
+            .spec(Some(ModelSpec::BW))
+            .unwrap_err()
+            .to_string();
         assert!(m.contains("--model bw disagrees"), "{m}");
     }
 }

@@ -3,7 +3,8 @@
 //! ```text
 //! spec   = base { "+" effect }
 //! base   = "bw" | "bwbn"
-//! effect = "a-degradation" | "strength-degradation" | "stiffness-degradation" | "pinching"
+//! effect = "a-degradation" | "strength-degradation" | "stiffness-degradation"
+//!        | "pinching" | "asymmetry" | a registered custom effect
 //! ```
 //!
 //! `bwbn` is `bw` with the four effects of the thesis' 17-parameter model.
@@ -75,12 +76,12 @@ impl ModelSpec {
 
 impl fmt::Display for ModelSpec {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        if self.effects == EffectSet::BWBN {
-            return f.write_str("bwbn");
-        }
-        f.write_str("bw")?;
+        let thesis = EffectKind::THESIS.iter().all(|k| self.effects.contains(*k));
+        f.write_str(if thesis { "bwbn" } else { "bw" })?;
         for k in self.effects.iter() {
-            write!(f, "+{}", k.name())?;
+            if !(thesis && EffectKind::THESIS.contains(&k)) {
+                write!(f, "+{}", k.name())?;
+            }
         }
         Ok(())
     }
@@ -103,6 +104,15 @@ mod tests {
         assert!(s.effects.contains(EffectKind::Pinching));
         assert_eq!(s.to_string(), "bw+strength-degradation+pinching");
         assert_eq!(ModelSpec::parse("bwbn").unwrap().to_string(), "bwbn");
+        assert_eq!(
+            ModelSpec::parse("bwbn+asymmetry").unwrap().to_string(),
+            "bwbn+asymmetry"
+        );
+        let all4 = "bw+asymmetry+pinching+a-degradation+strength-degradation+stiffness-degradation";
+        assert_eq!(
+            ModelSpec::parse(all4).unwrap().to_string(),
+            "bwbn+asymmetry"
+        );
         assert_eq!(ModelSpec::parse(" bw ").unwrap(), ModelSpec::BW);
     }
 

@@ -28,11 +28,13 @@
 //! passed to [`Bwbn`](super::Bwbn) as its extra-effect type parameter.
 
 mod a_degradation;
+mod asymmetry;
 mod pinching;
 mod stiffness_degradation;
 mod strength_degradation;
 
 pub use a_degradation::ADegradation;
+pub use asymmetry::Asymmetry;
 pub use pinching::{Pinching, ZuRule};
 pub use stiffness_degradation::StiffnessDegradation;
 pub use strength_degradation::StrengthDegradation;
@@ -151,18 +153,27 @@ pub enum EffectKind {
     StiffnessDegradation = 2,
     /// Pinching, h(z) (eqs 3.9-3.11).
     Pinching = 3,
+    /// Unequal strength and stiffness in the two directions (not in the
+    /// thesis).
+    Asymmetry = 4,
 }
 
 impl EffectKind {
-    /// Every built-in effect, in the order they are applied.
-    pub const ALL: [EffectKind; 4] = [
+    /// Every built-in effect.
+    pub const ALL: [EffectKind; 5] = [
+        EffectKind::ADegradation,
+        EffectKind::StrengthDegradation,
+        EffectKind::StiffnessDegradation,
+        EffectKind::Pinching,
+        EffectKind::Asymmetry,
+    ];
+    /// The effects of the 17-parameter BWBN model of the thesis.
+    pub const THESIS: [EffectKind; 4] = [
         EffectKind::ADegradation,
         EffectKind::StrengthDegradation,
         EffectKind::StiffnessDegradation,
         EffectKind::Pinching,
     ];
-    /// The effects of the 17-parameter BWBN model of the thesis.
-    pub const THESIS: [EffectKind; 4] = Self::ALL;
 
     /// Name in model specs.
     pub const fn name(self) -> &'static str {
@@ -171,6 +182,7 @@ impl EffectKind {
             EffectKind::StrengthDegradation => "strength-degradation",
             EffectKind::StiffnessDegradation => "stiffness-degradation",
             EffectKind::Pinching => "pinching",
+            EffectKind::Asymmetry => "asymmetry",
         }
     }
 
@@ -186,6 +198,7 @@ impl EffectKind {
             EffectKind::StrengthDegradation => &strength_degradation::PARAMS,
             EffectKind::StiffnessDegradation => &stiffness_degradation::PARAMS,
             EffectKind::Pinching => &pinching::PARAMS,
+            EffectKind::Asymmetry => &asymmetry::PARAMS,
         }
     }
 
@@ -204,6 +217,9 @@ impl EffectKind {
             EffectKind::Pinching => {
                 "the loop narrows near zero force on reloading, growing with energy (eqs 3.9-3.11)"
             }
+            EffectKind::Asymmetry => {
+                "the two directions reach different strengths (and stiffnesses)"
+            }
         }
     }
 }
@@ -218,6 +234,8 @@ impl EffectSet {
     pub const NONE: EffectSet = EffectSet(0);
     /// All four effects of the thesis' BWBN model.
     pub const BWBN: EffectSet = EffectSet(0b1111);
+    /// Every built-in effect.
+    pub const ALL: EffectSet = EffectSet(0b1_1111);
 
     /// The set with `kind` added.
     pub const fn with(self, kind: EffectKind) -> Self {
@@ -233,7 +251,7 @@ impl EffectSet {
     }
     /// The set with these bits, or `None` if a bit names no effect.
     pub const fn from_bits(bits: u8) -> Option<Self> {
-        if bits & !Self::BWBN.0 == 0 {
+        if bits & !Self::ALL.0 == 0 {
             Some(EffectSet(bits))
         } else {
             None
@@ -259,6 +277,8 @@ pub struct Effects<S> {
     pub stiffness_degradation: Option<StiffnessDegradation<S>>,
     /// Pinching (eqs 3.9-3.11).
     pub pinching: Option<Pinching<S>>,
+    /// Asymmetry.
+    pub asymmetry: Option<Asymmetry<S>>,
 }
 
 impl<S: Scalar> Effects<S> {
@@ -276,6 +296,9 @@ impl<S: Scalar> Effects<S> {
         }
         if self.pinching.is_some() {
             s = s.with(EffectKind::Pinching);
+        }
+        if self.asymmetry.is_some() {
+            s = s.with(EffectKind::Asymmetry);
         }
         s
     }
@@ -311,6 +334,10 @@ impl<S: Scalar> Effects<S> {
                 energy_limit,
             )?);
         }
+        if set.contains(EffectKind::Asymmetry) {
+            let [a, b] = asymmetry::PARAMS.each_ref().map(&mut value);
+            e.asymmetry = Some(Asymmetry::new(base, a, b)?);
+        }
         Ok(e)
     }
 
@@ -340,10 +367,16 @@ impl<S: Scalar> Effects<S> {
                 .zip(x.values())
                 .for_each(|(s, v)| f(s, v));
         }
+        if let Some(x) = &self.asymmetry {
+            asymmetry::PARAMS
+                .iter()
+                .zip(x.values())
+                .for_each(|(s, v)| f(s, v));
+        }
     }
 
-    /// Applies the effects: degradation first, then the extra effect, then
-    /// pinching (which reads the degraded A and nu through Zu).
+    /// Applies the effects: degradation and asymmetry first, then the extra
+    /// effect, then pinching (which reads the degraded A and nu through Zu).
     #[inline]
     pub fn apply<X: Effect<S>>(
         &self,
@@ -362,14 +395,17 @@ impl<S: Scalar> Effects<S> {
         if let Some(x) = &self.stiffness_degradation {
             x.apply(base, zu_plain, at, c);
         }
+        if let Some(x) = &self.asymmetry {
+            x.apply(base, zu_plain, at, c);
+        }
         extra.apply(base, zu_plain, at, c);
         if let Some(x) = &self.pinching {
             x.apply(base, zu_plain, at, c);
         }
     }
 
-    /// The restoring-force springs at `at` (only the extra effect changes
-    /// them so far).
+    /// The restoring-force springs at `at` (asymmetry, then the extra
+    /// effect).
     #[inline]
     pub fn stiffness<X: Effect<S>>(
         &self,
@@ -378,6 +414,9 @@ impl<S: Scalar> Effects<S> {
         at: &At<S>,
     ) -> Stiffness<S> {
         let mut k = Stiffness::plain(base);
+        if let Some(x) = &self.asymmetry {
+            x.stiffness(base, at, &mut k);
+        }
         extra.stiffness(base, at, &mut k);
         k
     }
