@@ -275,16 +275,40 @@ mod tests {
         let cases: &[(&[[f64; 2]], usize, BackboneRule)] = &[
             (&[[1.0, 5.0]], 1, BackboneRule::TooFewPoints),
             (
-                &[[1.0, 5.0], [2.0, 6.0], [3.0, 6.0], [4.0, 6.0], [5.0, 6.0], [6.0, 6.0], [7.0, 6.0]],
+                &[
+                    [1.0, 5.0],
+                    [2.0, 6.0],
+                    [3.0, 6.0],
+                    [4.0, 6.0],
+                    [5.0, 6.0],
+                    [6.0, 6.0],
+                    [7.0, 6.0],
+                ],
                 7,
                 BackboneRule::TooManyPoints,
             ),
             (&[[1.0, 5.0], [f64::NAN, 6.0]], 1, BackboneRule::NotFinite),
-            (&[[1.0, 5.0], [1.0, 6.0]], 1, BackboneRule::TwistNotIncreasing),
-            (&[[0.0, 5.0], [1.0, 6.0]], 0, BackboneRule::TwistNotIncreasing),
-            (&[[1.0, 5.0], [2.0, 6.0], [3.0, 0.0]], 2, BackboneRule::TorqueNotPositive),
+            (
+                &[[1.0, 5.0], [1.0, 6.0]],
+                1,
+                BackboneRule::TwistNotIncreasing,
+            ),
+            (
+                &[[0.0, 5.0], [1.0, 6.0]],
+                0,
+                BackboneRule::TwistNotIncreasing,
+            ),
+            (
+                &[[1.0, 5.0], [2.0, 6.0], [3.0, 0.0]],
+                2,
+                BackboneRule::TorqueNotPositive,
+            ),
             (&[[1.0, 5.0], [2.0, 5.0]], 1, BackboneRule::SlopeNotPositive),
-            (&[[1.0, 5.0], [2.0, 11.0]], 1, BackboneRule::SteeperThanInitial),
+            (
+                &[[1.0, 5.0], [2.0, 11.0]],
+                1,
+                BackboneRule::SteeperThanInitial,
+            ),
         ];
         for &(pts, point, rule) in cases {
             let e = curve(pts).unwrap_err();

@@ -168,11 +168,7 @@ impl<S: Scalar, const N: usize, const M: usize> Phm<S, N, M> {
     /// Elastic state: the uncracked part of both primary curves.
     fn elastic(&self, st: &mut State<S>, theta: S, dir: S) {
         let [pos, neg] = self.params.curves();
-        let (curve, side) = if theta < S::ZERO {
-            (neg, 1)
-        } else {
-            (pos, 0)
-        };
+        let (curve, side) = if theta < S::ZERO { (neg, 1) } else { (pos, 0) };
         if theta.abs() > curve.cracking()[0] {
             st.branch = Branch::plain(Kind::Envelope, dir);
             st.levels[side].cracked = true;
@@ -202,7 +198,8 @@ impl<S: Scalar, const N: usize, const M: usize> Phm<S, N, M> {
             };
             let c = self.params.coefficients();
             let x = d * st.twist;
-            st.levels[from.index()].count_unloading(x, t, c.0[rules::idx::CYCLE_BAND]);
+            let theta_c = self.params.curves()[from.index()].cracking()[0];
+            st.levels[from.index()].count_unloading(x, t, theta_c, c.0[rules::idx::CYCLE_BAND]);
             st.branch = rules::unloading_branch(c, self.params.curves(), from, [x, t], &st.levels);
         } else {
             // Reloading before zero torque: back to where the unloading began.
@@ -291,7 +288,6 @@ impl<S: Scalar, const N: usize, const M: usize> Element<S> for Phm<S, N, M> {
         };
         if delta != S::ZERO {
             let dir = if delta > S::ZERO { S::ONE } else { -S::ONE };
-            st.twist = theta;
             if st.branch.kind == Kind::Elastic {
                 self.elastic(&mut st, theta, dir);
             } else {
@@ -300,6 +296,7 @@ impl<S: Scalar, const N: usize, const M: usize> Element<S> for Phm<S, N, M> {
                 }
                 self.walk(&mut st, &mut pending, theta);
             }
+            st.twist = theta;
         }
         if !(st.torque.is_finite() && st.tangent.is_finite()) {
             return Err(StepError::NonFiniteState);

@@ -136,7 +136,10 @@ impl<S: Scalar> Coefficients<S> {
         }
         let band = self.0[idx::CYCLE_BAND];
         if !(band >= S::ZERO && band <= S::ONE) {
-            return Err(ParamError::new(SPECS[idx::CYCLE_BAND].name, Rule::NotAFraction));
+            return Err(ParamError::new(
+                SPECS[idx::CYCLE_BAND].name,
+                Rule::NotAFraction,
+            ));
         }
         Ok(self)
     }
@@ -187,9 +190,11 @@ impl<S: Scalar> Level<S> {
     /// unloading below the band is an inner cycle and changes nothing;
     /// within the band `theta_m` becomes the larger of the two twists and
     /// `T_m` the torque of this unloading. Nothing is counted before the
-    /// direction has cracked (rule 1 of §5.2.2 governs).
-    pub(crate) fn count_unloading(&mut self, x: S, t: S, band: S) {
-        if !self.cracked {
+    /// direction has cracked (rule 1 of §5.2.2 governs), nor from a twist
+    /// below cracking (reached only on the torque cap below cracking, gap
+    /// G6), so that `theta_m > theta_c` always holds where eqs 4-6 use it.
+    pub(crate) fn count_unloading(&mut self, x: S, t: S, theta_c: S, band: S) {
+        if !(self.cracked && x > theta_c) {
             return;
         }
         let hi = self.twist + self.twist * band;
@@ -235,11 +240,17 @@ pub(crate) fn unloading_branch<S: Scalar, const N: usize>(
         // Unloading rules 2-4 past yield: eqs 1b/1d, 2a/2b, 3b.
         let mu = xm / theta_y;
         b.push_unloading(
-            [-(xm * c.lin(idx::EQ1B_A, mu)), -(tm * c.lin(idx::EQ1D_A, mu))],
+            [
+                -(xm * c.lin(idx::EQ1B_A, mu)),
+                -(tm * c.lin(idx::EQ1D_A, mu)),
+            ],
             &mut cap,
         );
         b.push_unloading(
-            [-(xm * c.lin(idx::EQ2A_A, mu)), -(tm * c.lin(idx::EQ2B_A, mu))],
+            [
+                -(xm * c.lin(idx::EQ2A_A, mu)),
+                -(tm * c.lin(idx::EQ2B_A, mu)),
+            ],
             &mut cap,
         );
         b.push_unloading([-(xm * c.lin(idx::EQ3B_A, mu)), S::ZERO], &mut cap);
@@ -247,7 +258,10 @@ pub(crate) fn unloading_branch<S: Scalar, const N: usize>(
         // Unloading rules 2 and 4 before yield: eqs 1a/1c, 3a.
         let mu = xm / own.cracking()[0];
         b.push_unloading(
-            [-(xm * c.lin(idx::EQ1A_A, mu)), -(tm * c.lin(idx::EQ1C_A, mu))],
+            [
+                -(xm * c.lin(idx::EQ1A_A, mu)),
+                -(tm * c.lin(idx::EQ1C_A, mu)),
+            ],
             &mut cap,
         );
         b.push_unloading([-(xm * c.lin(idx::EQ3A_A, mu)), S::ZERO], &mut cap);
@@ -274,8 +288,8 @@ pub(crate) fn unloading_branch<S: Scalar, const N: usize>(
             * ((v[idx::EQ5B_A] * n + v[idx::EQ5B_B])
                 * mu.powf(v[idx::EQ5B_C] * n + v[idx::EQ5B_D]))
             .min(S::ONE);
-        let xcr = xm * ((v[idx::EQ5A_A] * n + v[idx::EQ5A_B]) * mu + v[idx::EQ5A_C] * n
-            + v[idx::EQ5A_D]);
+        let xcr =
+            xm * ((v[idx::EQ5A_A] * n + v[idx::EQ5A_B]) * mu + v[idx::EQ5A_C] * n + v[idx::EQ5A_D]);
         let tm2 = tm * (v[idx::EQ6_A] * mu + v[idx::EQ6_B] * n + v[idx::EQ6_C]).min(S::ONE);
         if xm > x0 {
             b.push_rising([xcr, y0 + (tp - y0) * ((xcr - x0) / (xm - x0))]);
@@ -328,18 +342,18 @@ mod tests {
             cracked: true,
             ..Level::default()
         };
-        l.count_unloading(4.0, 6.0, band);
+        l.count_unloading(4.0, 6.0, 1.0, band);
         assert_eq!((l.twist, l.torque, l.cycles), (4.0, 6.0, 1));
-        l.count_unloading(4.1, 5.8, band);
+        l.count_unloading(4.1, 5.8, 1.0, band);
         assert_eq!((l.twist, l.torque, l.cycles), (4.1, 5.8, 2));
-        l.count_unloading(3.9, 5.7, band);
+        l.count_unloading(3.9, 5.7, 1.0, band);
         assert_eq!((l.twist, l.torque, l.cycles), (4.1, 5.7, 3));
-        l.count_unloading(3.8, 5.0, band);
+        l.count_unloading(3.8, 5.0, 1.0, band);
         assert_eq!((l.twist, l.torque, l.cycles), (4.1, 5.7, 3));
-        l.count_unloading(4.4, 6.1, band);
+        l.count_unloading(4.4, 6.1, 1.0, band);
         assert_eq!((l.twist, l.torque, l.cycles), (4.4, 6.1, 1));
         let mut uncracked = Level::<f64>::default();
-        uncracked.count_unloading(0.5, 1.0, band);
+        uncracked.count_unloading(0.5, 1.0, 1.0, band);
         assert_eq!(uncracked.cycles, 0);
     }
 }
