@@ -11,12 +11,20 @@ use hysteresis::{Element, Fixed, Scalar};
 use std::hint::black_box;
 
 fn history() -> Vec<f64> {
-    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../shared/data/opensees-reference/history.csv");
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../shared/data/opensees-reference/history.csv"
+    );
     let text = std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{path}: {e}"));
     text.lines()
         .skip(1)
         .filter(|l| !l.trim().is_empty())
-        .map(|l| l.split(',').nth(1).and_then(|v| v.trim().parse().ok()).expect("step,strain rows"))
+        .map(|l| {
+            l.split(',')
+                .nth(1)
+                .and_then(|v| v.trim().parse().ok())
+                .expect("step,strain rows")
+        })
         .collect()
 }
 
@@ -31,17 +39,21 @@ fn bench_arithmetic<S: Scalar>(c: &mut Criterion, h: &[f64]) {
     let twists: Vec<S> = h.iter().map(|&x| S::from_f64(x)).collect();
     let mut group = c.benchmark_group("phm_reference_history");
     group.throughput(Throughput::Elements(twists.len() as u64));
-    group.bench_with_input(BenchmarkId::from_parameter(S::NAME), &twists, |b, twists| {
-        b.iter(|| {
-            let mut el: Phm<S, 4, 16> = Phm::new(params.clone());
-            let mut acc = S::ZERO;
-            for &x in twists {
-                acc += el.set_trial(black_box(x)).unwrap().force;
-                el.commit();
-            }
-            black_box(acc)
-        })
-    });
+    group.bench_with_input(
+        BenchmarkId::from_parameter(S::NAME),
+        &twists,
+        |b, twists| {
+            b.iter(|| {
+                let mut el: Phm<S, 4, 16> = Phm::new(params.clone());
+                let mut acc = S::ZERO;
+                for &x in twists {
+                    acc += el.set_trial(black_box(x)).unwrap().force;
+                    el.commit();
+                }
+                black_box(acc)
+            })
+        },
+    );
     group.finish();
 }
 

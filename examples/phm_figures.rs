@@ -18,8 +18,7 @@ fn root() -> PathBuf {
 }
 
 fn read_csv(path: &Path) -> Vec<Vec<f64>> {
-    let text =
-        std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    let text = std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
     text.lines()
         .enumerate()
         .skip(1)
@@ -33,7 +32,12 @@ fn read_csv(path: &Path) -> Vec<Vec<f64>> {
                         return f64::NAN;
                     }
                     v.parse().unwrap_or_else(|e| {
-                        panic!("{}:{}:{}: expected a number, got {v:?}: {e}", path.display(), i + 1, j + 1)
+                        panic!(
+                            "{}:{}:{}: expected a number, got {v:?}: {e}",
+                            path.display(),
+                            i + 1,
+                            j + 1
+                        )
                     })
                 })
                 .collect()
@@ -148,7 +152,11 @@ impl Plot {
                 .iter()
                 .map(|&(x, y)| format!("{:.2},{:.2}", sx(x), sy(y)))
                 .collect();
-            let dash = if ser.dashed { r#" stroke-dasharray="6 4""# } else { "" };
+            let dash = if ser.dashed {
+                r#" stroke-dasharray="6 4""#
+            } else {
+                ""
+            };
             let _ = writeln!(
                 s,
                 r#"<polyline fill="none" stroke="{}" stroke-width="1.4"{dash} points="{}"/>"#,
@@ -196,11 +204,15 @@ fn trace<const N: usize, const M: usize>(
     for &to in path {
         while el.displacement() != to {
             let x0 = el.displacement();
-            let x = if (to - x0).abs() <= h { to } else { x0 + h * (to - x0).signum() };
-            let before = el.committed().branch;
+            let x = if (to - x0).abs() <= h {
+                to
+            } else {
+                x0 + h * (to - x0).signum()
+            };
+            let before = el.committed().dir();
             el.set_trial(x).unwrap();
-            let b = el.trial().branch;
-            if b.dir() != before.dir() && b.kind() == Kind::Rule {
+            let b = *el.branch();
+            if b.dir() != before && b.kind() == Kind::Rule {
                 for (v, name) in b.vertices().zip(labels(&b, el.params())) {
                     if let Some(name) = name {
                         marks.push((b.dir() * v[0], b.dir() * v[1], name.to_string()));
@@ -227,7 +239,11 @@ fn labels<const N: usize>(b: &Branch<f64>, p: &PhmParams<f64, N>) -> Vec<Option<
         3 => &["P", "ur1", "ur2", "su"],
         _ => &["P", "", "", "", ""],
     };
-    let side = if b.dir() > 0.0 { Direction::Positive } else { Direction::Negative };
+    let side = if b.dir() > 0.0 {
+        Direction::Positive
+    } else {
+        Direction::Negative
+    };
     let crack = p.primary(side).cracking();
     let mut out: Vec<Option<&'static str>> = (0..=zero.min(v.len() - 1))
         .map(|i| unloading.get(i).copied().filter(|s| !s.is_empty()))
@@ -245,7 +261,9 @@ fn rules_figure() {
     let curve = [[1.0, 10.0], [5.0, 20.0], [10.0, 20.0], [15.0, 16.0]];
     let p = PhmParams::<f64, 4>::symmetric(&curve, Coefficients::thesis()).unwrap();
     let mut el: Phm<f64, 4, 16> = Phm::new(p);
-    let history = [0.6, -0.6, 3.0, -3.0, 8.0, -8.0, 8.0, 7.0, 7.6, -8.0, 12.0, -12.0];
+    let history = [
+        0.6, -0.6, 3.0, -3.0, 8.0, -8.0, 8.0, 7.0, 7.6, -8.0, 12.0, -12.0,
+    ];
     let (pts, marks) = trace(&mut el, &history, 0.02);
     let mut envelope = vec![];
     for s in [-1.0, 1.0] {
@@ -294,7 +312,10 @@ fn energy_blocks(theta: &[f64], torque: &[f64], len: usize) -> Vec<f64> {
 
 fn compare() {
     let dir = root().join("../shared/data/opensees-reference");
-    let history: Vec<f64> = read_csv(&dir.join("history.csv")).iter().map(|r| r[1]).collect();
+    let history: Vec<f64> = read_csv(&dir.join("history.csv"))
+        .iter()
+        .map(|r| r[1])
+        .collect();
     let hysteretic = [[1.0, 5.0], [4.0, 6.5], [8.0, 5.5]];
     let pinching4 = [[1.0, 5.0], [3.0, 6.3], [6.0, 6.5], [10.0, 5.0]];
     let cases: [(&str, &[[f64; 2]]); 5] = [
@@ -325,12 +346,25 @@ fn compare() {
             })
             .collect();
         let n = history.len() as f64;
-        let rms = (phm.iter().zip(&reference).map(|(a, b)| (a - b).powi(2)).sum::<f64>() / n).sqrt();
-        let max = phm.iter().zip(&reference).map(|(a, b)| (a - b).abs()).fold(0.0, f64::max);
+        let rms = (phm
+            .iter()
+            .zip(&reference)
+            .map(|(a, b)| (a - b).powi(2))
+            .sum::<f64>()
+            / n)
+            .sqrt();
+        let max = phm
+            .iter()
+            .zip(&reference)
+            .map(|(a, b)| (a - b).abs())
+            .fold(0.0, f64::max);
         let ep = energy_blocks(&history, &phm, 600);
         let er = energy_blocks(&history, &reference, 600);
-        let energies: Vec<String> =
-            ep.iter().zip(&er).map(|(a, b)| format!("{a:.1}/{b:.1}")).collect();
+        let energies: Vec<String> = ep
+            .iter()
+            .zip(&er)
+            .map(|(a, b)| format!("{a:.1}/{b:.1}"))
+            .collect();
         // Third cycle of each amplitude block: peak at step 600 k + 400 + 50.
         let peak = |v: &[f64], block: usize| v[600 * block + 450];
         let peaks = format!(
@@ -355,7 +389,11 @@ fn compare() {
                     label: format!("OpenSees {name}"),
                     color: "#d9822b",
                     dashed: false,
-                    points: history.iter().copied().zip(reference.iter().copied()).collect(),
+                    points: history
+                        .iter()
+                        .copied()
+                        .zip(reference.iter().copied())
+                        .collect(),
                 },
                 Series {
                     label: "PHM".into(),

@@ -51,8 +51,6 @@ pub struct Branch<S> {
     /// Direction of motion: +1 or -1 (0 only for the virgin elastic state).
     pub(crate) dir: S,
     pub(crate) n: u8,
-    /// The segment the last evaluated twist lies on.
-    pub(crate) seg: u8,
     /// Index of the first vertex at zero torque or beyond (rule branches).
     pub(crate) zero: u8,
     pub(crate) x: [S; VERTICES],
@@ -70,7 +68,6 @@ impl<S: Scalar> Branch<S> {
             kind,
             dir,
             n: 0,
-            seg: 0,
             zero: u8::MAX,
             x: [S::ZERO; VERTICES],
             y: [S::ZERO; VERTICES],
@@ -96,7 +93,8 @@ impl<S: Scalar> Branch<S> {
         (0..self.n as usize).map(|i| [self.x[i], self.y[i]])
     }
 
-    /// The kind of branch.
+    /// The kind of branch as built (the element's [`State::kind`](super::State::kind)
+    /// tells whether it has since met the primary curve).
     pub fn kind(&self) -> Kind {
         self.kind
     }
@@ -230,10 +228,11 @@ impl<S: Scalar> Branch<S> {
         b
     }
 
-    /// Torque (motion coordinates) and slope on the current segment.
+    /// Torque (motion coordinates) and slope on segment `seg` (the ray for
+    /// the last vertex).
     #[inline]
-    pub(crate) fn at(&self, x: S) -> (S, S) {
-        let i = self.seg as usize;
+    pub(crate) fn at(&self, seg: u8, x: S) -> (S, S) {
+        let i = seg as usize;
         (self.y[i] + self.k[i] * (x - self.x[i]), self.k[i])
     }
 }

@@ -71,7 +71,10 @@ use crate::element::{Element, Response, StepError};
 use crate::scalar::Scalar;
 use heapless::Vec;
 
-/// The state of a [`Phm`] element (committed or trial).
+/// The state of a [`Phm`] element (committed or trial): where it is and on
+/// which part of which branch. The branch geometry and the rule memory
+/// ([`Phm::branch`], [`Phm::levels`]) live beside it and change only at
+/// reversals, so a step copies only this small cursor.
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct State<S> {
@@ -81,24 +84,56 @@ pub struct State<S> {
     pub torque: S,
     /// d(torque)/d(twist) along the direction of the last increment.
     pub tangent: S,
-    /// The branch being followed.
-    pub branch: Branch<S>,
-    /// What the rules remember of each direction (positive first).
-    pub levels: [Level<S>; 2],
+    /// Direction of the last increment: +1 or -1 (0 in the virgin state).
+    dir: S,
+    /// What is being followed: the branch (`Rule`, `Chord`, `Ray`), the
+    /// primary curve (`Envelope`) or the elastic line (`Elastic`).
+    kind: Kind,
+    /// Segment of the branch the twist lies on.
+    seg: u8,
+    /// Which of the two slots holds the branch and the rule memory.
+    slot: u8,
 }
 
-/// The memory of the trial: how many committed entries survive and the one
-/// entry a reversal adds.
-#[derive(Clone, Copy, Debug)]
-struct Pending<S> {
+impl<S: Copy> State<S> {
+    /// What the element is following.
+    pub fn kind(&self) -> Kind {
+        self.kind
+    }
+    /// Direction of the last increment: +1 or -1 (0 in the virgin state).
+    pub fn dir(&self) -> S {
+        self.dir
+    }
+}
+
+/// A branch with the rule memory in force while it is followed. The
+/// committed state's slot is never written by a trial.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Slot<S> {
+    branch: Branch<S>,
+    levels: [Level<S>; 2],
+}
+
+/// A remembered branch and where on it the element left it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Frame<S> {
+    branch: Branch<S>,
+    kind: Kind,
+    seg: u8,
+}
+
+/// The memory of the trial: how many committed entries survive, and whether
+/// the committed branch is pushed (a reversal happened).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+struct Pending {
     keep: usize,
-    pushed: Option<Branch<S>>,
+    push: bool,
 }
 
-impl<S: Scalar> Pending<S> {
+impl Pending {
     fn clear(&mut self) {
         self.keep = 0;
-        self.pushed = None;
+        self.push = false;
     }
 }
 
@@ -107,10 +142,11 @@ impl<S: Scalar> Pending<S> {
 #[derive(Clone, Debug)]
 pub struct Phm<S: Scalar, const N: usize = 8, const M: usize = 16> {
     params: PhmParams<S, N>,
+    slots: [Slot<S>; 2],
     committed: State<S>,
     trial: State<S>,
-    pending: Pending<S>,
-    memory: Vec<Branch<S>, M>,
+    pending: Pending,
+    memory: Vec<Frame<S>, M>,
     forgotten: u32,
 }
 
@@ -118,13 +154,18 @@ impl<S: Scalar, const N: usize, const M: usize> Phm<S, N, M> {
     /// An element in its virgin state.
     pub fn new(params: PhmParams<S, N>) -> Self {
         let virgin = Self::virgin(&params);
+        let slot = Slot {
+            branch: Branch::plain(Kind::Elastic, S::ZERO),
+            levels: [Level::default(); 2],
+        };
         Phm {
             params,
+            slots: [slot; 2],
             committed: virgin,
             trial: virgin,
             pending: Pending {
                 keep: 0,
-                pushed: None,
+                push: false,
             },
             memory: Vec::new(),
             forgotten: 0,
@@ -136,8 +177,10 @@ impl<S: Scalar, const N: usize, const M: usize> Phm<S, N, M> {
             twist: S::ZERO,
             torque: S::ZERO,
             tangent: params.curves()[0].k1(),
-            branch: Branch::plain(Kind::Elastic, S::ZERO),
-            levels: [Level::default(); 2],
+            dir: S::ZERO,
+            kind: Kind::Elastic,
+            seg: 0,
+            slot: 0,
         }
     }
 
@@ -153,6 +196,16 @@ impl<S: Scalar, const N: usize, const M: usize> Phm<S, N, M> {
     pub fn trial(&self) -> &State<S> {
         &self.trial
     }
+    /// The branch of the trial state (as built at its reversal; see
+    /// [`State::kind`] for what is followed now).
+    pub fn branch(&self) -> &Branch<S> {
+        &self.slots[self.trial.slot as usize].branch
+    }
+    /// What the rules remember of each direction (positive first), in the
+    /// trial state.
+    pub fn levels(&self) -> &[Level<S>; 2] {
+        &self.slots[self.trial.slot as usize].levels
+    }
     /// The number of committed branches waiting to be resumed (inner cycles
     /// in progress).
     pub fn memory_depth(&self) -> usize {
@@ -165,18 +218,41 @@ impl<S: Scalar, const N: usize, const M: usize> Phm<S, N, M> {
         self.forgotten
     }
 
+    /// The slot a trial may write: the one the committed state does not use.
+    /// Makes `st` use it, copying the current slot there first.
+    fn writable(&mut self, st: &mut State<S>) -> &mut Slot<S> {
+        let other = 1 - self.committed.slot;
+        if st.slot != other {
+            self.slots[other as usize] = self.slots[st.slot as usize];
+            st.slot = other;
+        }
+        &mut self.slots[other as usize]
+    }
+
+    /// Marks direction `side` cracked (the first time only: a slot copy).
+    fn crack(&mut self, st: &mut State<S>, side: usize) {
+        if !self.slots[st.slot as usize].levels[side].cracked {
+            self.writable(st).levels[side].cracked = true;
+        }
+    }
+
+    #[inline]
+    fn bound(&self, dir: S) -> &Backbone<S, N> {
+        &self.params.curves()[if dir > S::ZERO { 0 } else { 1 }]
+    }
+
     /// Elastic state: the uncracked part of both primary curves.
-    fn elastic(&self, st: &mut State<S>, theta: S, dir: S) {
-        let [pos, neg] = self.params.curves();
-        let (curve, side) = if theta < S::ZERO { (neg, 1) } else { (pos, 0) };
+    fn elastic(&mut self, st: &mut State<S>, theta: S, dir: S) {
+        let side = if theta < S::ZERO { 1 } else { 0 };
+        let curve = &self.params.curves()[side];
+        st.dir = dir;
         if theta.abs() > curve.cracking()[0] {
-            st.branch = Branch::plain(Kind::Envelope, dir);
-            st.levels[side].cracked = true;
             let (y, k) = curve.bound(theta.abs());
-            st.torque = dir * y;
+            st.kind = Kind::Envelope;
+            st.torque = signed(dir, y);
             st.tangent = k;
+            self.crack(st, side);
         } else {
-            st.branch.dir = dir;
             st.torque = curve.k1() * theta;
             st.tangent = curve.k1();
         }
@@ -184,12 +260,11 @@ impl<S: Scalar, const N: usize, const M: usize> Phm<S, N, M> {
 
     /// The twist reversed at the committed point: start the branch of the
     /// new direction `dir` and remember the one left.
-    fn reverse(&self, st: &mut State<S>, pending: &mut Pending<S>, dir: S) {
-        let old = st.branch;
-        let d = old.dir;
+    fn reverse(&mut self, st: &mut State<S>, pending: &mut Pending, dir: S) {
+        let d = st.dir;
         let t = d * st.torque;
-        let q = [dir * st.twist, dir * st.torque];
-        if t > S::ZERO {
+        let slot = self.slots[st.slot as usize];
+        let branch = if t > S::ZERO {
             // Unloading: rules 2-4 from this point, whatever branch it is on.
             let from = if d > S::ZERO {
                 Direction::Positive
@@ -198,76 +273,81 @@ impl<S: Scalar, const N: usize, const M: usize> Phm<S, N, M> {
             };
             let c = self.params.coefficients();
             let x = d * st.twist;
+            let mut levels = slot.levels;
             let theta_c = self.params.curves()[from.index()].cracking()[0];
-            st.levels[from.index()].count_unloading(x, t, theta_c, c.0[rules::idx::CYCLE_BAND]);
-            st.branch = rules::unloading_branch(c, self.params.curves(), from, [x, t], &st.levels);
+            levels[from.index()].count_unloading(x, t, theta_c, c.0[rules::idx::CYCLE_BAND]);
+            let b = rules::unloading_branch(c, self.params.curves(), from, [x, t], &levels);
+            self.writable(st).levels = levels;
+            b
         } else {
             // Reloading before zero torque: back to where the unloading began.
-            let to = [-old.x[0], -old.y[0]];
-            st.branch = Branch::chord(dir, q, to, self.bound(dir));
-        }
-        pending.pushed = Some(old);
-    }
-
-    #[inline]
-    fn bound(&self, dir: S) -> &Backbone<S, N> {
-        &self.params.curves()[if dir > S::ZERO { 0 } else { 1 }]
+            let to = [-slot.branch.x[0], -slot.branch.y[0]];
+            Branch::chord(dir, [dir * st.twist, dir * st.torque], to, self.bound(dir))
+        };
+        st.kind = branch.kind;
+        st.seg = 0;
+        st.dir = dir;
+        self.writable(st).branch = branch;
+        pending.push = true;
     }
 
     /// Removes the chord's own entry and the entry of its target; returns
-    /// the branch to resume, or `None` if they were forgotten.
-    fn pop_two(&self, pending: &mut Pending<S>) -> Option<Branch<S>> {
-        let available = pending.keep + pending.pushed.is_some() as usize;
+    /// the frame to resume, or `None` if they were forgotten.
+    fn pop_two(memory: &[Frame<S>], pending: &mut Pending) -> Option<Frame<S>> {
+        let available = pending.keep + pending.push as usize;
         if available < 2 {
             pending.clear();
             return None;
         }
-        if pending.pushed.take().is_none() {
+        if pending.push {
+            pending.push = false;
+        } else {
             pending.keep -= 1;
         }
         pending.keep -= 1;
-        Some(self.memory[pending.keep])
+        Some(memory[pending.keep])
     }
 
     /// Follows the branch in its direction of motion up to `theta`.
-    fn walk(&self, st: &mut State<S>, pending: &mut Pending<S>, theta: S) {
-        let dir = st.branch.dir;
-        let x = dir * theta;
+    fn walk(&mut self, st: &mut State<S>, pending: &mut Pending, theta: S) {
+        let dir = st.dir;
+        let x = signed(dir, theta);
         loop {
-            let b = &mut st.branch;
-            if b.kind != Kind::Envelope && !(x < b.contact) {
-                b.kind = Kind::Envelope;
+            if st.kind != Kind::Envelope && !(x < self.slots[st.slot as usize].branch.contact) {
+                st.kind = Kind::Envelope;
                 pending.clear();
+                self.crack(st, if dir > S::ZERO { 0 } else { 1 });
             }
-            if b.kind == Kind::Envelope {
-                let side = if dir > S::ZERO { 0 } else { 1 };
-                st.levels[side].cracked = true;
+            if st.kind == Kind::Envelope {
                 let (y, k) = self.bound(dir).bound(x);
-                st.torque = dir * y;
+                st.torque = signed(dir, y);
                 st.tangent = k;
                 return;
             }
+            let b = &self.slots[st.slot as usize].branch;
             let mut resumed = None;
-            while (b.seg as usize) + 1 < b.n as usize && x > b.x[b.seg as usize + 1] {
-                b.seg += 1;
-                match b.kind {
-                    Kind::Rule if b.seg == b.zero => pending.clear(),
-                    Kind::Chord if b.seg + 1 == b.n => {
-                        match self.pop_two(pending) {
-                            Some(r) => resumed = Some(r),
-                            None => b.kind = Kind::Ray,
+            while st.seg + 1 < b.n && x > b.x[st.seg as usize + 1] {
+                st.seg += 1;
+                match st.kind {
+                    Kind::Rule if st.seg == b.zero => pending.clear(),
+                    Kind::Chord if st.seg + 1 == b.n => {
+                        match Self::pop_two(&self.memory, pending) {
+                            Some(f) => resumed = Some(f),
+                            None => st.kind = Kind::Ray,
                         }
                         break;
                     }
                     _ => {}
                 }
             }
-            if let Some(r) = resumed {
-                st.branch = r;
+            if let Some(f) = resumed {
+                st.kind = f.kind;
+                st.seg = f.seg;
+                self.writable(st).branch = f.branch;
                 continue;
             }
-            let (y, k) = b.at(x);
-            st.torque = dir * y;
+            let (y, k) = b.at(st.seg, x);
+            st.torque = signed(dir, y);
             st.tangent = k;
             return;
         }
@@ -276,22 +356,21 @@ impl<S: Scalar, const N: usize, const M: usize> Phm<S, N, M> {
 
 impl<S: Scalar, const N: usize, const M: usize> Element<S> for Phm<S, N, M> {
     fn set_trial(&mut self, theta: S) -> Result<Response<S>, StepError> {
-        let c = &self.committed;
-        let delta = theta - c.twist;
+        let mut st = self.committed;
+        let delta = theta - st.twist;
         if !(theta.is_finite() && delta.is_finite()) {
             return Err(StepError::NonFiniteInput);
         }
-        let mut st = *c;
         let mut pending = Pending {
             keep: self.memory.len(),
-            pushed: None,
+            push: false,
         };
         if delta != S::ZERO {
             let dir = if delta > S::ZERO { S::ONE } else { -S::ONE };
-            if st.branch.kind == Kind::Elastic {
+            if st.kind == Kind::Elastic {
                 self.elastic(&mut st, theta, dir);
             } else {
-                if dir != st.branch.dir {
+                if dir != st.dir {
                     self.reverse(&mut st, &mut pending, dir);
                 }
                 self.walk(&mut st, &mut pending, theta);
@@ -310,9 +389,17 @@ impl<S: Scalar, const N: usize, const M: usize> Element<S> for Phm<S, N, M> {
     }
 
     fn commit(&mut self) {
-        let p = &mut self.pending;
-        self.memory.truncate(p.keep);
-        if let Some(b) = p.pushed.take() {
+        let p = self.pending;
+        if p.keep != self.memory.len() {
+            self.memory.truncate(p.keep);
+        }
+        if p.push {
+            let c = &self.committed;
+            let frame = Frame {
+                branch: self.slots[c.slot as usize].branch,
+                kind: c.kind,
+                seg: c.seg,
+            };
             if self.memory.is_full() {
                 if !self.memory.is_empty() {
                     self.memory.remove(0);
@@ -321,9 +408,12 @@ impl<S: Scalar, const N: usize, const M: usize> Element<S> for Phm<S, N, M> {
             }
             // Room was made just above (with M = 0 the entry is counted in
             // `forgotten` instead).
-            let _ = self.memory.push(b);
+            let _ = self.memory.push(frame);
         }
-        p.keep = self.memory.len();
+        self.pending = Pending {
+            keep: self.memory.len(),
+            push: false,
+        };
         self.committed = self.trial;
     }
 
@@ -331,19 +421,12 @@ impl<S: Scalar, const N: usize, const M: usize> Element<S> for Phm<S, N, M> {
         self.trial = self.committed;
         self.pending = Pending {
             keep: self.memory.len(),
-            pushed: None,
+            push: false,
         };
     }
 
     fn reset(&mut self) {
-        self.committed = Self::virgin(&self.params);
-        self.trial = self.committed;
-        self.memory.clear();
-        self.pending = Pending {
-            keep: 0,
-            pushed: None,
-        };
-        self.forgotten = 0;
+        *self = Self::new(self.params.clone());
     }
 
     fn response(&self) -> Response<S> {
@@ -355,6 +438,18 @@ impl<S: Scalar, const N: usize, const M: usize> Element<S> for Phm<S, N, M> {
 
     fn displacement(&self) -> S {
         self.committed.twist
+    }
+}
+
+/// `v` with the sign of `dir` (+1 or -1) applied: a negation, not a
+/// multiplication (which costs a wide multiply and saturation checks in fixed
+/// point).
+#[inline(always)]
+fn signed<S: Scalar>(dir: S, v: S) -> S {
+    if dir < S::ZERO {
+        -v
+    } else {
+        v
     }
 }
 

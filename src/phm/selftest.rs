@@ -108,7 +108,7 @@ pub fn elastic_rule_1<S: Scalar>() {
     close(el.response().tangent, 10.0, "tangent");
     drive(&mut el, S::ZERO, 8);
     close(torque(&el), 0.0, "back to 0");
-    assert_eq!(el.committed().branch.kind(), Kind::Elastic);
+    assert_eq!(el.committed().kind(), Kind::Elastic);
     assert_eq!(el.memory_depth(), 0);
 }
 
@@ -146,8 +146,8 @@ pub fn pre_yield_rule_2<S: Scalar>() {
     // Rule 6: on the negative primary curve past cracking.
     drive(&mut el, S::from_i32(-2), 10);
     close(torque(&el), -12.5, "negative primary");
-    assert_eq!(el.committed().branch.kind(), Kind::Envelope);
-    let pos = el.committed().levels[0];
+    assert_eq!(el.committed().kind(), Kind::Envelope);
+    let pos = el.levels()[0];
     assert_eq!(pos.cycles, 1);
     close(pos.twist, 3.0, "theta_m");
 }
@@ -226,11 +226,11 @@ pub fn pinched_rules_4_6<S: Scalar>() {
     // The second cycle: n = 2 in both directions, T_m = T'_m of the first.
     drive(&mut el, S::from_i32(-8), 160);
     close(torque(&el), -tm2, "T'_m at -theta_m");
-    assert_eq!(el.committed().levels[0].cycles, 2);
+    assert_eq!(el.levels()[0].cycles, 2);
     drive(&mut el, S::from_i32(8), 160);
     let tm3 = tm2 * (0.9842 + 0.0177 * 2.0 - 0.05557 * mu).min(1.0);
     close(torque(&el), tm3, "T'_m with n = 2");
-    assert_eq!(el.committed().levels[1].cycles, 2);
+    assert_eq!(el.levels()[1].cycles, 2);
     // Rule 6: beyond theta_m the branch runs on (slope about 2.3 from
     // (8, 17.0)) and meets the plateau (20) near 9.3.
     drive(&mut el, tw(19, 2), 15);
@@ -262,7 +262,7 @@ pub fn inner_cycle_returns<S: Scalar>() {
     drive(&mut el, tw(85, 10), 9);
     close(torque(&el), 20.0, "primary curve resumed");
     assert_eq!(el.memory_depth(), 0);
-    assert_eq!(el.committed().levels[0].cycles, 1);
+    assert_eq!(el.levels()[0].cycles, 1);
     assert_eq!(el.forgotten(), 0);
 }
 
@@ -287,7 +287,7 @@ pub fn memory_full_policy<S: Scalar>() {
     }
     let (full, t4, t35, t45) = run::<S, 2>();
     assert_eq!(full.forgotten(), 2);
-    assert_eq!(full.committed().branch.kind(), Kind::Ray);
+    assert_eq!(full.committed().kind(), Kind::Ray);
     let (t4, t35) = (t4.to_f64(), t35.to_f64());
     close(t45, t4 + (t4 - t35), "chord continued past 4");
     let (roomy, _, _, t45) = run::<S, 16>();

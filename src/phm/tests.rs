@@ -87,7 +87,7 @@ fn closed_inner_cycles_are_passive() {
                 drive(&mut el, x, 40);
             }
             let r = (el.displacement(), el.response().force);
-            let dir = el.committed().branch.dir();
+            let dir = el.committed().dir();
             // Unload a random fraction towards zero torque, staying above it.
             let depth = 0.05 + 0.9 * uniform();
             let mut probe = el.clone();
@@ -161,10 +161,7 @@ fn step_size_does_not_matter() {
             drive(&mut fine, x, 997);
             let (a, b) = (coarse.response(), fine.response());
             assert!((a.force - b.force).abs() < 1e-9, "{x}: {a:?} vs {b:?}");
-            assert_eq!(
-                coarse.committed().branch.kind(),
-                fine.committed().branch.kind()
-            );
+            assert_eq!(coarse.committed().kind(), fine.committed().kind());
         }
     }
 }
@@ -177,7 +174,7 @@ fn inside<const N: usize, const M: usize>(el: &Phm<f64, N, M>) -> Result<(), Str
     if st.torque.abs() > peak * (1.0 + 1e-12) {
         return Err(format!("|T| = {} > peak {peak}", st.torque.abs()));
     }
-    let d = st.branch.dir();
+    let d = st.dir();
     if d != 0.0 {
         let side = if d > 0.0 {
             Direction::Positive
@@ -224,6 +221,8 @@ proptest! {
             el.commit();
             twin.commit();
             prop_assert_eq!(el.committed(), twin.committed());
+            prop_assert_eq!(el.branch(), twin.branch());
+            prop_assert_eq!(el.levels(), twin.levels());
             prop_assert_eq!(el.memory_depth(), twin.memory_depth());
         }
     }
