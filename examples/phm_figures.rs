@@ -59,7 +59,7 @@ struct Plot {
     xlabel: &'static str,
     ylabel: &'static str,
     series: Vec<Series>,
-    markers: Vec<(f64, f64, String)>,
+    markers: Vec<Marker>,
 }
 
 fn ticks(lo: f64, hi: f64) -> Vec<f64> {
@@ -191,6 +191,9 @@ impl Plot {
     }
 }
 
+/// A labelled point of a figure.
+type Marker = (f64, f64, String);
+
 /// Drives `el` along `path` in steps of at most `h`; returns the (twist,
 /// torque) points and the control points of every rule branch started on
 /// the way, labelled.
@@ -198,7 +201,7 @@ fn trace<const N: usize, const M: usize>(
     el: &mut Phm<f64, N, M>,
     path: &[f64],
     h: f64,
-) -> (Vec<(f64, f64)>, Vec<(f64, f64, String)>) {
+) -> (Vec<(f64, f64)>, Vec<Marker>) {
     let mut pts = vec![(el.displacement(), el.response().force)];
     let mut marks = Vec::new();
     for &to in path {
