@@ -53,7 +53,7 @@ impl Direction {
 pub enum BackboneRule {
     /// Fewer than two points: cracking and yield are both required.
     TooFewPoints,
-    /// More points than the capacity `N` of the curve's type.
+    /// More points than the capacity `N` of the curve's type (or than 254).
     TooManyPoints,
     /// A twist or torque is NaN or infinite (or saturated fixed point).
     NotFinite,
@@ -74,7 +74,9 @@ impl BackboneRule {
             BackboneRule::TooFewPoints => {
                 "needs at least two points: cracking (theta_c, T_c) and yield (theta_y, T_y)"
             }
-            BackboneRule::TooManyPoints => "has more points than the capacity of its type",
+            BackboneRule::TooManyPoints => {
+                "has more points than the capacity of its type (at most 254)"
+            }
             BackboneRule::NotFinite => "must be finite numbers",
             BackboneRule::TwistNotIncreasing => "twists must increase strictly from zero",
             BackboneRule::TorqueNotPositive => "torques (magnitudes) must be greater than zero",
@@ -149,7 +151,8 @@ impl<S: Scalar, const N: usize> Backbone<S, N> {
         if points.len() < 2 {
             return Err(err(points.len(), BackboneRule::TooFewPoints));
         }
-        if points.len() > N {
+        // The element keeps its segment on the curve in a u8.
+        if points.len() > N || points.len() > u8::MAX as usize - 1 {
             return Err(err(points.len(), BackboneRule::TooManyPoints));
         }
         let mut curve = Backbone {
@@ -244,6 +247,18 @@ impl<S: Scalar, const N: usize> Backbone<S, N> {
     #[inline]
     pub(crate) fn bound(&self, x: S) -> (S, S) {
         self.bound_in(self.locate(x), x)
+    }
+
+    /// [`bound`](Self::bound) for a twist that only grows: `seg` is the
+    /// segment of the previous twist and is moved forward to this one's.
+    #[inline]
+    pub(crate) fn follow(&self, seg: &mut u8, x: S) -> (S, S) {
+        let mut i = *seg as usize;
+        while i < self.points.len() && !(x < self.points[i][0]) {
+            i += 1;
+        }
+        *seg = i as u8;
+        self.bound_in(i, x)
     }
 
     /// [`bound`](Self::bound) with the segment already known.

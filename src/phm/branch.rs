@@ -53,10 +53,9 @@ pub struct Branch<S> {
     pub(crate) n: u8,
     /// Index of the first vertex at zero torque or beyond (rule branches).
     pub(crate) zero: u8,
-    pub(crate) x: [S; VERTICES],
-    pub(crate) y: [S; VERTICES],
-    /// `k[i]`: slope from vertex i to i+1; `k[n-1]` is the slope of the ray.
-    pub(crate) k: [S; VERTICES],
+    /// `[x, y, k]` of each vertex: its coordinates and the slope from it to
+    /// the next one (for the last vertex, the slope of the ray).
+    pub(crate) v: [[S; 3]; VERTICES],
     /// First x at which the branch reaches the bound (`S::MAX`: never).
     pub(crate) contact: S,
 }
@@ -69,9 +68,7 @@ impl<S: Scalar> Branch<S> {
             dir,
             n: 0,
             zero: u8::MAX,
-            x: [S::ZERO; VERTICES],
-            y: [S::ZERO; VERTICES],
-            k: [S::ZERO; VERTICES],
+            v: [[S::ZERO; 3]; VERTICES],
             contact: S::MAX,
         }
     }
@@ -79,8 +76,8 @@ impl<S: Scalar> Branch<S> {
     /// A branch starting at `start` (motion coordinates).
     pub(crate) fn starting(kind: Kind, dir: S, start: [S; 2]) -> Self {
         let mut b = Self::plain(kind, dir);
-        b.x[0] = start[0];
-        b.y[0] = start[1];
+        b.v[0][0] = start[0];
+        b.v[0][1] = start[1];
         b.n = 1;
         if !(start[1] < S::ZERO) {
             b.zero = 0;
@@ -90,7 +87,7 @@ impl<S: Scalar> Branch<S> {
 
     /// The vertices in motion coordinates.
     pub fn vertices(&self) -> impl Iterator<Item = [S; 2]> + '_ {
-        (0..self.n as usize).map(|i| [self.x[i], self.y[i]])
+        (0..self.n as usize).map(|i| [self.v[i][0], self.v[i][1]])
     }
 
     /// The kind of branch as built (the element's [`State::kind`](super::State::kind)
@@ -107,7 +104,7 @@ impl<S: Scalar> Branch<S> {
     #[inline]
     pub(crate) fn last(&self) -> [S; 2] {
         let i = self.n as usize - 1;
-        [self.x[i], self.y[i]]
+        [self.v[i][0], self.v[i][1]]
     }
 
     fn append(&mut self, x: S, y: S) {
@@ -115,9 +112,9 @@ impl<S: Scalar> Branch<S> {
         if i >= VERTICES {
             return;
         }
-        self.k[i - 1] = (y - self.y[i - 1]) / (x - self.x[i - 1]);
-        self.x[i] = x;
-        self.y[i] = y;
+        self.v[i - 1][2] = (y - self.v[i - 1][1]) / (x - self.v[i - 1][0]);
+        self.v[i][0] = x;
+        self.v[i][1] = y;
         if self.zero == u8::MAX && !(y < S::ZERO) {
             self.zero = i as u8;
         }
@@ -136,7 +133,7 @@ impl<S: Scalar> Branch<S> {
         let x = p[0].max(x0 + (y - y0) / *cap);
         if x > x0 {
             self.append(x, y);
-            let k = self.k[self.n as usize - 2];
+            let k = self.v[self.n as usize - 2][2];
             if k < *cap {
                 *cap = k;
             }
@@ -159,7 +156,7 @@ impl<S: Scalar> Branch<S> {
     pub(crate) fn finish<const N: usize>(&mut self, bound: &Backbone<S, N>) {
         let n = self.n as usize;
         if n >= 2 {
-            self.k[n - 1] = self.k[n - 2];
+            self.v[n - 1][2] = self.v[n - 2][2];
         }
         self.contact = self.first_contact(bound);
     }
@@ -169,19 +166,19 @@ impl<S: Scalar> Branch<S> {
     /// look at those and interpolate.
     fn first_contact<const N: usize>(&self, bound: &Backbone<S, N>) -> S {
         let n = self.n as usize;
-        let mut a = self.x[0];
+        let mut a = self.v[0][0];
         let mut i = 0;
         let mut j = bound.locate(a);
-        let mut da = self.y[0] - bound.bound_in(j, a).0;
+        let mut da = self.v[0][1] - bound.bound_in(j, a).0;
         if !(da < S::ZERO) {
             return a;
         }
         loop {
-            let next_vertex = (i + 1 < n).then(|| self.x[i + 1]);
+            let next_vertex = (i + 1 < n).then(|| self.v[i + 1][0]);
             let next_break = (j + 1 < bound.segments()).then(|| bound.breakpoint(j + 1));
             let b = match (next_vertex, next_break) {
                 (None, None) => {
-                    let closing = self.k[i] - bound.bound_in(j, a).1;
+                    let closing = self.v[i][2] - bound.bound_in(j, a).1;
                     return if closing > S::ZERO {
                         a - da / closing
                     } else {
@@ -192,7 +189,7 @@ impl<S: Scalar> Branch<S> {
                 (None, Some(w)) => w,
                 (Some(v), Some(w)) => v.min(w),
             };
-            let yb = self.y[i] + self.k[i] * (b - self.x[i]);
+            let yb = self.v[i][1] + self.v[i][2] * (b - self.v[i][0]);
             let db = yb - bound.bound_in(j, b).0;
             if !(db < S::ZERO) {
                 return a + (b - a) * (-da / (db - da));
@@ -222,7 +219,7 @@ impl<S: Scalar> Branch<S> {
             // Cannot happen for a reversal away from the branch start; keep a
             // well-defined branch anyway.
             b.kind = Kind::Ray;
-            b.k[0] = bound.k1();
+            b.v[0][2] = bound.k1();
         }
         b.finish(bound);
         b
@@ -232,8 +229,8 @@ impl<S: Scalar> Branch<S> {
     /// the last vertex).
     #[inline]
     pub(crate) fn at(&self, seg: u8, x: S) -> (S, S) {
-        let i = seg as usize;
-        (self.y[i] + self.k[i] * (x - self.x[i]), self.k[i])
+        let [x0, y0, k] = self.v[seg as usize];
+        (y0 + k * (x - x0), k)
     }
 }
 

@@ -69,7 +69,7 @@ pub use rules::{CoefficientSpec, Coefficients, Level, SPECS};
 
 use crate::element::{Element, Response, StepError};
 use crate::scalar::Scalar;
-use heapless::Vec;
+use heapless::Deque;
 
 /// The state of a [`Phm`] element (committed or trial): where it is and on
 /// which part of which branch. The branch geometry and the rule memory
@@ -89,7 +89,8 @@ pub struct State<S> {
     /// What is being followed: the branch (`Rule`, `Chord`, `Ray`), the
     /// primary curve (`Envelope`) or the elastic line (`Elastic`).
     kind: Kind,
-    /// Segment of the branch the twist lies on.
+    /// Segment of the branch (or, on the primary curve, of the curve) the
+    /// twist lies on.
     seg: u8,
     /// Which of the two slots holds the branch and the rule memory.
     slot: u8,
@@ -146,7 +147,9 @@ pub struct Phm<S: Scalar, const N: usize = 8, const M: usize = 16> {
     committed: State<S>,
     trial: State<S>,
     pending: Pending,
-    memory: Vec<Frame<S>, M>,
+    memory: Deque<Frame<S>, M>,
+    /// `memory.len()`, kept here because a ring buffer computes it.
+    depth: usize,
     forgotten: u32,
 }
 
@@ -167,7 +170,8 @@ impl<S: Scalar, const N: usize, const M: usize> Phm<S, N, M> {
                 keep: 0,
                 push: false,
             },
-            memory: Vec::new(),
+            memory: Deque::new(),
+            depth: 0,
             forgotten: 0,
         }
     }
@@ -209,7 +213,7 @@ impl<S: Scalar, const N: usize, const M: usize> Phm<S, N, M> {
     /// The number of committed branches waiting to be resumed (inner cycles
     /// in progress).
     pub fn memory_depth(&self) -> usize {
-        self.memory.len()
+        self.depth
     }
     /// How many remembered branches were dropped because the memory (capacity
     /// `M`) was full. Non-zero means some inner cycle will not close on the
@@ -230,6 +234,8 @@ impl<S: Scalar, const N: usize, const M: usize> Phm<S, N, M> {
     }
 
     /// Marks direction `side` cracked (the first time only: a slot copy).
+    #[cold]
+    #[inline(never)]
     fn crack(&mut self, st: &mut State<S>, side: usize) {
         if !self.slots[st.slot as usize].levels[side].cracked {
             self.writable(st).levels[side].cracked = true;
@@ -247,7 +253,8 @@ impl<S: Scalar, const N: usize, const M: usize> Phm<S, N, M> {
         let curve = &self.params.curves()[side];
         st.dir = dir;
         if theta.abs() > curve.cracking()[0] {
-            let (y, k) = curve.bound(theta.abs());
+            st.seg = curve.locate(theta.abs()) as u8;
+            let (y, k) = curve.bound_in(st.seg as usize, theta.abs());
             st.kind = Kind::Envelope;
             st.torque = signed(dir, y);
             st.tangent = k;
@@ -259,11 +266,15 @@ impl<S: Scalar, const N: usize, const M: usize> Phm<S, N, M> {
     }
 
     /// The twist reversed at the committed point: start the branch of the
-    /// new direction `dir` and remember the one left.
+    /// new direction `dir` and remember the one left. Out of line: a step
+    /// without reversal stays small.
+    #[cold]
+    #[inline(never)]
     fn reverse(&mut self, st: &mut State<S>, pending: &mut Pending, dir: S) {
         let d = st.dir;
-        let t = d * st.torque;
-        let slot = self.slots[st.slot as usize];
+        let t = signed(d, st.torque);
+        let current = &self.slots[st.slot as usize];
+        let mut levels = current.levels;
         let branch = if t > S::ZERO {
             // Unloading: rules 2-4 from this point, whatever branch it is on.
             let from = if d > S::ZERO {
@@ -272,28 +283,27 @@ impl<S: Scalar, const N: usize, const M: usize> Phm<S, N, M> {
                 Direction::Negative
             };
             let c = self.params.coefficients();
-            let x = d * st.twist;
-            let mut levels = slot.levels;
+            let x = signed(d, st.twist);
             let theta_c = self.params.curves()[from.index()].cracking()[0];
             levels[from.index()].count_unloading(x, t, theta_c, c.0[rules::idx::CYCLE_BAND]);
-            let b = rules::unloading_branch(c, self.params.curves(), from, [x, t], &levels);
-            self.writable(st).levels = levels;
-            b
+            rules::unloading_branch(c, self.params.curves(), from, [x, t], &levels)
         } else {
             // Reloading before zero torque: back to where the unloading began.
-            let to = [-slot.branch.x[0], -slot.branch.y[0]];
-            Branch::chord(dir, [dir * st.twist, dir * st.torque], to, self.bound(dir))
+            let to = [-current.branch.v[0][0], -current.branch.v[0][1]];
+            let from = [signed(dir, st.twist), signed(dir, st.torque)];
+            Branch::chord(dir, from, to, self.bound(dir))
         };
         st.kind = branch.kind;
         st.seg = 0;
         st.dir = dir;
-        self.writable(st).branch = branch;
+        st.slot = 1 - self.committed.slot;
+        self.slots[st.slot as usize] = Slot { branch, levels };
         pending.push = true;
     }
 
     /// Removes the chord's own entry and the entry of its target; returns
     /// the frame to resume, or `None` if they were forgotten.
-    fn pop_two(memory: &[Frame<S>], pending: &mut Pending) -> Option<Frame<S>> {
+    fn pop_two(memory: &Deque<Frame<S>, M>, pending: &mut Pending) -> Option<Frame<S>> {
         let available = pending.keep + pending.push as usize;
         if available < 2 {
             pending.clear();
@@ -305,7 +315,58 @@ impl<S: Scalar, const N: usize, const M: usize> Phm<S, N, M> {
             pending.keep -= 1;
         }
         pending.keep -= 1;
-        Some(memory[pending.keep])
+        memory.get(pending.keep).copied()
+    }
+
+    /// The branch met the primary curve (rule 6): follow it from here on;
+    /// nothing remembered can be returned to any more.
+    #[cold]
+    #[inline(never)]
+    fn reach_envelope(&mut self, st: &mut State<S>, pending: &mut Pending, x: S) {
+        st.kind = Kind::Envelope;
+        st.seg = self.bound(st.dir).locate(x) as u8;
+        pending.clear();
+        self.crack(st, if st.dir > S::ZERO { 0 } else { 1 });
+    }
+
+    /// An inner cycle closed: resume the remembered branch.
+    #[cold]
+    #[inline(never)]
+    fn resume(&mut self, st: &mut State<S>, f: Frame<S>) {
+        st.kind = f.kind;
+        st.seg = f.seg;
+        self.writable(st).branch = f.branch;
+    }
+
+    /// Applies the trial's changes to the memory: drops the entries it
+    /// closed, then pushes the branch left at its reversal (the oldest entry
+    /// goes if the memory is full, counted in `forgotten`, gap G8).
+    #[cold]
+    #[inline(never)]
+    fn commit_memory(&mut self) {
+        let p = self.pending;
+        self.memory.truncate(p.keep);
+        if p.push {
+            let c = &self.committed;
+            let frame = Frame {
+                branch: self.slots[c.slot as usize].branch,
+                kind: c.kind,
+                seg: c.seg,
+            };
+            if self.memory.is_full() {
+                // A ring buffer: dropping the oldest entry is O(1).
+                self.memory.pop_front();
+                self.forgotten = self.forgotten.saturating_add(1);
+            }
+            // Room was made just above (with M = 0 the entry is counted in
+            // `forgotten` instead).
+            let _ = self.memory.push_back(frame);
+        }
+        self.depth = self.memory.len();
+        self.pending = Pending {
+            keep: self.depth,
+            push: false,
+        };
     }
 
     /// Follows the branch in its direction of motion up to `theta`.
@@ -314,19 +375,17 @@ impl<S: Scalar, const N: usize, const M: usize> Phm<S, N, M> {
         let x = signed(dir, theta);
         loop {
             if st.kind != Kind::Envelope && !(x < self.slots[st.slot as usize].branch.contact) {
-                st.kind = Kind::Envelope;
-                pending.clear();
-                self.crack(st, if dir > S::ZERO { 0 } else { 1 });
+                self.reach_envelope(st, pending, x);
             }
             if st.kind == Kind::Envelope {
-                let (y, k) = self.bound(dir).bound(x);
+                let (y, k) = self.bound(dir).follow(&mut st.seg, x);
                 st.torque = signed(dir, y);
                 st.tangent = k;
                 return;
             }
             let b = &self.slots[st.slot as usize].branch;
             let mut resumed = None;
-            while st.seg + 1 < b.n && x > b.x[st.seg as usize + 1] {
+            while st.seg + 1 < b.n && x > b.v[st.seg as usize + 1][0] {
                 st.seg += 1;
                 match st.kind {
                     Kind::Rule if st.seg == b.zero => pending.clear(),
@@ -341,9 +400,7 @@ impl<S: Scalar, const N: usize, const M: usize> Phm<S, N, M> {
                 }
             }
             if let Some(f) = resumed {
-                st.kind = f.kind;
-                st.seg = f.seg;
-                self.writable(st).branch = f.branch;
+                self.resume(st, f);
                 continue;
             }
             let (y, k) = b.at(st.seg, x);
@@ -357,16 +414,15 @@ impl<S: Scalar, const N: usize, const M: usize> Phm<S, N, M> {
 impl<S: Scalar, const N: usize, const M: usize> Element<S> for Phm<S, N, M> {
     fn set_trial(&mut self, theta: S) -> Result<Response<S>, StepError> {
         let mut st = self.committed;
-        let delta = theta - st.twist;
-        if !(theta.is_finite() && delta.is_finite()) {
+        if !theta.is_finite() {
             return Err(StepError::NonFiniteInput);
         }
         let mut pending = Pending {
-            keep: self.memory.len(),
+            keep: self.depth,
             push: false,
         };
-        if delta != S::ZERO {
-            let dir = if delta > S::ZERO { S::ONE } else { -S::ONE };
+        if theta != st.twist {
+            let dir = if theta > st.twist { S::ONE } else { -S::ONE };
             if st.kind == Kind::Elastic {
                 self.elastic(&mut st, theta, dir);
             } else {
@@ -389,38 +445,16 @@ impl<S: Scalar, const N: usize, const M: usize> Element<S> for Phm<S, N, M> {
     }
 
     fn commit(&mut self) {
-        let p = self.pending;
-        if p.keep != self.memory.len() {
-            self.memory.truncate(p.keep);
+        if self.pending.push || self.pending.keep != self.depth {
+            self.commit_memory();
         }
-        if p.push {
-            let c = &self.committed;
-            let frame = Frame {
-                branch: self.slots[c.slot as usize].branch,
-                kind: c.kind,
-                seg: c.seg,
-            };
-            if self.memory.is_full() {
-                if !self.memory.is_empty() {
-                    self.memory.remove(0);
-                }
-                self.forgotten = self.forgotten.saturating_add(1);
-            }
-            // Room was made just above (with M = 0 the entry is counted in
-            // `forgotten` instead).
-            let _ = self.memory.push(frame);
-        }
-        self.pending = Pending {
-            keep: self.memory.len(),
-            push: false,
-        };
         self.committed = self.trial;
     }
 
     fn revert(&mut self) {
         self.trial = self.committed;
         self.pending = Pending {
-            keep: self.memory.len(),
+            keep: self.depth,
             push: false,
         };
     }
