@@ -245,7 +245,7 @@ impl<S: Scalar, const N: usize> Backbone<S, N> {
     /// cracking; `T_c` below cracking (gap G6 in `docs/phm.md`); the last
     /// torque past the last point.
     #[inline]
-    pub(crate) fn bound(&self, x: S) -> (S, S) {
+    pub fn bound(&self, x: S) -> (S, S) {
         self.bound_in(self.locate(x), x)
     }
 
