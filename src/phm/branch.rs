@@ -109,6 +109,8 @@ impl<S: Scalar> Branch<S> {
 
     fn append(&mut self, x: S, y: S) {
         let i = self.n as usize;
+        // A rule branch has at most VERTICES points by construction (P, two
+        // unloading points, su, cr, m'); a chord has two.
         if i >= VERTICES {
             return;
         }
@@ -122,14 +124,18 @@ impl<S: Scalar> Branch<S> {
     }
 
     /// Appends an unloading control point, projected so that the unloading
-    /// stays monotone and convex (gap G2 in `docs/phm.md`): its torque lies
-    /// between the previous torque and zero, and the segment is no stiffer
-    /// than `cap`, which then becomes this segment's slope (so no later
-    /// segment is stiffer). A point that would not advance the twist is
-    /// dropped.
+    /// stays monotone and convex (gap G2 in `docs/phm.md`): its torque is
+    /// clamped at zero, and the segment is no stiffer than `cap`, which then
+    /// becomes this segment's slope (so no later segment is stiffer). A point
+    /// whose torque does not drop below the previous one is dropped (a flat
+    /// segment would stop the unloading short of zero torque).
     pub(crate) fn push_unloading(&mut self, p: [S; 2], cap: &mut S) {
         let [x0, y0] = self.last();
-        let y = p[1].max(y0).min(S::ZERO);
+        let y = p[1].min(S::ZERO);
+        if !(y > y0) {
+            // No torque drop: the point adds nothing to the unloading.
+            return;
+        }
         let x = p[0].max(x0 + (y - y0) / *cap);
         if x > x0 {
             self.append(x, y);
@@ -254,9 +260,9 @@ mod tests {
         b.push_unloading([-4.1, -5.5], &mut cap);
         assert!((b.last()[0] + 3.8).abs() < 1e-15 && b.last()[1] == -5.5);
         assert!((cap - 5.0).abs() < 1e-14);
-        // A torque above the previous one is lowered to it: a zero-length
-        // step in twist is dropped.
+        // A torque that does not drop is dropped (also when equal).
         b.push_unloading([-3.9, -6.0], &mut cap);
+        b.push_unloading([-3.0, -5.5], &mut cap);
         assert_eq!(b.n, 2);
         // Slope (0 + 5.5) / (-1 + 3.8) = 1.964..: accepted, becomes the cap.
         b.push_unloading([-1.0, 0.0], &mut cap);

@@ -227,6 +227,52 @@ proptest! {
         }
     }
 
+    /// Any valid primary curve and any coefficients (the thesis' values
+    /// scaled by -1 to 3, far outside their fitted range): random walks never
+    /// panic or fail, stay under the bound, and the element's memory and
+    /// commit/revert stay consistent.
+    #[test]
+    fn random_parameters(
+        dx in prop::collection::vec(0.1f64..3.0, 2..6),
+        slopes in prop::collection::vec(-0.9f64..0.95, 1..5),
+        k1 in 0.5f64..20.0,
+        scale in prop::collection::vec(-1.0f64..3.0, SPECS.len()),
+        moves in prop::collection::vec(-4.0f64..4.0, 1..250),
+    ) {
+        let mut pts: Vec<[f64; 2]> = Vec::new();
+        let (mut x, mut t) = (0.0, 0.0);
+        for (i, d) in dx.iter().enumerate() {
+            let k = if i == 0 { k1 } else if i == 1 { k1 * slopes[0].abs().max(0.05) }
+                    else { k1 * slopes[(i - 1) % slopes.len()] };
+            x += d;
+            t = (t + k * d).max(0.2 * t);
+            pts.push([x, t]);
+        }
+        let mut c = Coefficients::<f64>::thesis();
+        for (v, s) in c.0.iter_mut().zip(&scale) {
+            *v *= s;
+        }
+        c.0[rules::idx::CYCLE_BAND] = c.0[rules::idx::CYCLE_BAND].abs().min(1.0);
+        let neg: Vec<[f64; 2]> = pts.iter().map(|p| [p[0] * 1.1, p[1] * 0.9]).collect();
+        let params = PhmParams::<f64, 6>::new(&pts, &neg, c);
+        prop_assume!(params.is_ok());
+        let mut el: Phm<f64, 6, 4> = Phm::new(params.unwrap());
+        let mut twin = el.clone();
+        let span = 1.5 * x;
+        let mut theta = 0.0;
+        for m in moves {
+            theta = (theta + m * x / 4.0).clamp(-span, span);
+            el.set_trial(-theta).unwrap();
+            el.revert();
+            let r = el.set_trial(theta).unwrap();
+            prop_assert_eq!(r, twin.set_trial(theta).unwrap());
+            prop_assert!(inside(&el).is_ok(), "{:?}", inside(&el));
+            el.commit();
+            twin.commit();
+            prop_assert_eq!(el.levels(), twin.levels());
+        }
+    }
+
     /// The same walks in f32 and fixed point never fail either and stay
     /// inside the envelope (checked in f64 with the arithmetic's resolution).
     #[test]
