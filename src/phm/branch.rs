@@ -172,10 +172,16 @@ impl<S: Scalar> Branch<S> {
     /// look at those and interpolate.
     fn first_contact<const N: usize>(&self, bound: &Backbone<S, N>) -> S {
         let n = self.n as usize;
-        let mut a = self.v[0][0];
-        let mut i = 0;
+        // Before the zero-torque vertex the torque is of the other sign and
+        // cannot reach the bound (which is positive): start the search there.
+        let mut i = if (self.zero as usize) < n {
+            self.zero as usize
+        } else {
+            n - 1
+        };
+        let mut a = self.v[i][0];
         let mut j = bound.locate(a);
-        let mut da = self.v[0][1] - bound.bound_in(j, a).0;
+        let mut da = self.v[i][1] - bound.bound_in(j, a).0;
         if !(da < S::ZERO) {
             return a;
         }
