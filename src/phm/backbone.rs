@@ -129,7 +129,7 @@ impl fmt::Display for BackboneError {
 
 impl core::error::Error for BackboneError {}
 
-/// The primary curve of one direction (see the [module docs](self)), with
+/// The primary curve of one direction (thesis §5.2.1, see [`phm`](crate::phm)), with
 /// room for `N` points.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Backbone<S, const N: usize> {

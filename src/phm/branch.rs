@@ -43,7 +43,8 @@ pub enum Kind {
     Ray,
 }
 
-/// A branch (see the [module docs](self)).
+/// A branch of the hysteresis loop: the polyline between two reversals, in
+/// the coordinates of its motion, with its contact twist on the primary curve.
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct Branch<S> {
