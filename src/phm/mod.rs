@@ -24,9 +24,9 @@
 //! reloading. A partial unloading that reverses before zero torque reloads
 //! along a chord back to the point where the unloading began and there
 //! resumes the branch it left (return-point memory). The branches to resume
-//! are kept in a stack of fixed capacity `M` (heapless, in the type); when it
-//! is full the oldest entry is dropped and counted in [`Phm::forgotten`]
-//! (gap G8 in `docs/phm.md`). The full list of decisions on the gaps the
+//! are kept in a stack of fixed capacity `M` (a `heapless::Deque`, capacity in
+//! the type); when it is full the oldest entry is dropped (O(1)) and counted
+//! in [`Phm::forgotten`] (gap G8 in `docs/phm.md`). The full list of decisions on the gaps the
 //! thesis leaves is in `docs/phm.md`.
 //!
 //! # Units
