@@ -4,6 +4,8 @@
 //! * [`bwbn`]: the Bouc-Wen-Baber-Noori smooth model (thesis ch. 3) with its
 //!   effects switchable, as a displacement-driven [`Element`] and as a
 //!   force-driven oscillator.
+//! * [`phm`]: the polygonal hysteresis model of RC columns under cyclic
+//!   torsion (thesis ch. 5), a twist-driven [`Element`] with the same API.
 //! * [`scalar`]: the arithmetic the models are generic over: `f64` on the
 //!   host, `f32` on Cortex-M4F, [`Fixed`] (Q15.16) on FPU-less parts.
 //!
@@ -23,6 +25,7 @@ extern crate std;
 
 pub mod bwbn;
 mod element;
+pub mod phm;
 pub mod scalar;
 
 pub use element::{Element, Response, StepError};

@@ -1,0 +1,298 @@
+//! A branch of the hysteresis loop: the piecewise-linear path the element
+//! follows between two reversals (thesis §5.2: "paths joining successive
+//! control points are called branches").
+//!
+//! A branch is built once, when the twist reverses, and then only evaluated,
+//! which keeps a step cheap. It is stored in the coordinates of its motion
+//! `x = dir * twist`, `y = dir * torque`, so that x always increases along it.
+//! Past its last vertex it continues as a ray with the last segment's slope.
+//!
+//! While loading in direction `dir` the torque may not exceed the bound of
+//! that direction (the primary curve, rule 6 of §5.2.3). Both the branch and
+//! the bound are piecewise linear, so the twist at which the branch first
+//! meets the bound (`contact`) is found exactly when the branch is built; a
+//! step then only compares its twist with `contact`, and the result does not
+//! depend on the step size.
+
+use super::backbone::Backbone;
+use crate::scalar::Scalar;
+
+/// The most vertices a branch needs: the reversal point, two unloading
+/// control points, the zero-torque point, the crack-closing point and the
+/// reloading target (eqs 1-6).
+pub(crate) const VERTICES: usize = 6;
+
+/// What a branch is and what happens at its special vertices.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum Kind {
+    /// Virgin, uncracked state: the elastic part of the primary curve in both
+    /// directions (unloading rule 1, loading rule 1).
+    Elastic,
+    /// On the primary curve (bound) of the direction of motion (rule 6).
+    Envelope,
+    /// A branch built by the thesis' rules (unloading eqs 1-3, then reloading
+    /// by eq 4, 5-6 or towards cracking); crossing its zero-torque vertex
+    /// ends the unloading.
+    Rule,
+    /// Reloading after a partial unloading: heads back to the point where the
+    /// unloading began and resumes the branch that was left there.
+    Chord,
+    /// A chord whose resume point was forgotten (memory full): goes on
+    /// straight until it meets the primary curve.
+    Ray,
+}
+
+/// A branch of the hysteresis loop: the polyline between two reversals, in
+/// the coordinates of its motion, with its contact twist on the primary curve.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct Branch<S> {
+    pub(crate) kind: Kind,
+    /// Direction of motion: +1 or -1 (0 only for the virgin elastic state).
+    pub(crate) dir: S,
+    pub(crate) n: u8,
+    /// Index of the first vertex at zero torque or beyond (rule branches).
+    pub(crate) zero: u8,
+    /// `[x, y, k]` of each vertex: its coordinates and the slope from it to
+    /// the next one (for the last vertex, the slope of the ray).
+    pub(crate) v: [[S; 3]; VERTICES],
+    /// First x at which the branch reaches the bound (`S::MAX`: never).
+    pub(crate) contact: S,
+}
+
+impl<S: Scalar> Branch<S> {
+    /// A branch without vertices (elastic or envelope).
+    pub(crate) fn plain(kind: Kind, dir: S) -> Self {
+        Branch {
+            kind,
+            dir,
+            n: 0,
+            zero: u8::MAX,
+            v: [[S::ZERO; 3]; VERTICES],
+            contact: S::MAX,
+        }
+    }
+
+    /// A branch starting at `start` (motion coordinates).
+    pub(crate) fn starting(kind: Kind, dir: S, start: [S; 2]) -> Self {
+        let mut b = Self::plain(kind, dir);
+        b.v[0][0] = start[0];
+        b.v[0][1] = start[1];
+        b.n = 1;
+        if !(start[1] < S::ZERO) {
+            b.zero = 0;
+        }
+        b
+    }
+
+    /// The vertices in motion coordinates.
+    pub fn vertices(&self) -> impl Iterator<Item = [S; 2]> + '_ {
+        (0..self.n as usize).map(|i| [self.v[i][0], self.v[i][1]])
+    }
+
+    /// The kind of branch as built (the element's [`State::kind`](super::State::kind)
+    /// tells whether it has since met the primary curve).
+    pub fn kind(&self) -> Kind {
+        self.kind
+    }
+
+    /// Direction of motion along the branch (+1 or -1).
+    pub fn dir(&self) -> S {
+        self.dir
+    }
+
+    #[inline]
+    pub(crate) fn last(&self) -> [S; 2] {
+        let i = self.n as usize - 1;
+        [self.v[i][0], self.v[i][1]]
+    }
+
+    fn append(&mut self, x: S, y: S) {
+        let i = self.n as usize;
+        // A rule branch has at most VERTICES points by construction (P, two
+        // unloading points, su, cr, m'); a chord has two.
+        if i >= VERTICES {
+            return;
+        }
+        self.v[i - 1][2] = (y - self.v[i - 1][1]) / (x - self.v[i - 1][0]);
+        self.v[i][0] = x;
+        self.v[i][1] = y;
+        if self.zero == u8::MAX && !(y < S::ZERO) {
+            self.zero = i as u8;
+        }
+        self.n += 1;
+    }
+
+    /// Appends an unloading control point, projected so that the unloading
+    /// stays monotone and convex (gap G2 in `docs/phm.md`): its torque is
+    /// clamped at zero, and the segment is no stiffer than `cap`, which then
+    /// becomes this segment's slope (so no later segment is stiffer). A point
+    /// whose torque does not drop below the previous one is dropped (a flat
+    /// segment would stop the unloading short of zero torque).
+    pub(crate) fn push_unloading(&mut self, p: [S; 2], cap: &mut S) {
+        let [x0, y0] = self.last();
+        let y = p[1].min(S::ZERO);
+        if !(y > y0) {
+            // No torque drop: the point adds nothing to the unloading.
+            return;
+        }
+        let x = p[0].max(x0 + (y - y0) / *cap);
+        if x > x0 {
+            self.append(x, y);
+            let k = self.v[self.n as usize - 2][2];
+            if k < *cap {
+                *cap = k;
+            }
+        }
+    }
+
+    /// Appends a reloading control point: the torque never falls while
+    /// reloading (it is raised to the previous torque if needed); a point that
+    /// does not advance the twist is dropped.
+    pub(crate) fn push_rising(&mut self, p: [S; 2]) {
+        let [x0, y0] = self.last();
+        if p[0] > x0 {
+            self.append(p[0], p[1].max(y0));
+        }
+    }
+
+    /// Closes the branch: the ray past the last vertex keeps the last slope,
+    /// and the contact with `bound` (the primary curve of the direction of
+    /// motion) is computed.
+    pub(crate) fn finish<const N: usize>(&mut self, bound: &Backbone<S, N>) {
+        let n = self.n as usize;
+        if n >= 2 {
+            self.v[n - 1][2] = self.v[n - 2][2];
+        }
+        self.contact = self.first_contact(bound);
+    }
+
+    /// The first x >= x[0] where the branch reaches the bound: both are
+    /// linear between the union of their breakpoints, so it is enough to
+    /// look at those and interpolate.
+    fn first_contact<const N: usize>(&self, bound: &Backbone<S, N>) -> S {
+        let n = self.n as usize;
+        // Before the zero-torque vertex the torque is of the other sign and
+        // cannot reach the bound (which is positive): start the search there.
+        let mut i = if (self.zero as usize) < n {
+            self.zero as usize
+        } else {
+            n - 1
+        };
+        let mut a = self.v[i][0];
+        let mut j = bound.locate(a);
+        let mut da = self.v[i][1] - bound.bound_in(j, a).0;
+        if !(da < S::ZERO) {
+            return a;
+        }
+        loop {
+            let next_vertex = (i + 1 < n).then(|| self.v[i + 1][0]);
+            let next_break = (j + 1 < bound.segments()).then(|| bound.breakpoint(j + 1));
+            let b = match (next_vertex, next_break) {
+                (None, None) => {
+                    let closing = self.v[i][2] - bound.bound_in(j, a).1;
+                    return if closing > S::ZERO {
+                        a - da / closing
+                    } else {
+                        S::MAX
+                    };
+                }
+                (Some(v), None) => v,
+                (None, Some(w)) => w,
+                (Some(v), Some(w)) => v.min(w),
+            };
+            let yb = self.v[i][1] + self.v[i][2] * (b - self.v[i][0]);
+            let db = yb - bound.bound_in(j, b).0;
+            if !(db < S::ZERO) {
+                return a + (b - a) * (-da / (db - da));
+            }
+            if next_vertex == Some(b) {
+                i += 1;
+            }
+            if next_break == Some(b) {
+                j += 1;
+            }
+            a = b;
+            da = db;
+        }
+    }
+
+    /// A chord from `from` back to `to` (motion coordinates, `to` ahead).
+    pub(crate) fn chord<const N: usize>(
+        dir: S,
+        from: [S; 2],
+        to: [S; 2],
+        bound: &Backbone<S, N>,
+    ) -> Self {
+        let mut b = Self::starting(Kind::Chord, dir, from);
+        if to[0] > from[0] {
+            b.append(to[0], to[1]);
+        } else {
+            // Cannot happen for a reversal away from the branch start; keep a
+            // well-defined branch anyway.
+            b.kind = Kind::Ray;
+            b.v[0][2] = bound.k1();
+        }
+        b.finish(bound);
+        b
+    }
+
+    /// Torque (motion coordinates) and slope on segment `seg` (the ray for
+    /// the last vertex).
+    #[inline]
+    pub(crate) fn at(&self, seg: u8, x: S) -> (S, S) {
+        let [x0, y0, k] = self.v[seg as usize];
+        (y0 + k * (x - x0), k)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::phm::backbone::Direction;
+
+    fn hysteretic() -> Backbone<f64, 4> {
+        Backbone::new(Direction::Positive, &[[1.0, 5.0], [4.0, 6.5], [8.0, 5.5]]).unwrap()
+    }
+
+    /// Unloading projection: torques clamped between the previous torque and
+    /// zero, slopes capped by the previous slope.
+    #[test]
+    fn unloading_points_are_projected() {
+        let mut b = Branch::starting(Kind::Rule, -1.0, [-4.0, -6.5]);
+        let mut cap = 5.0;
+        // Eq. 1 would put this point at larger twist (x = -4.1 < -4): the cap
+        // moves it to x = -4 + (-5.5 + 6.5) / 5 = -3.8.
+        b.push_unloading([-4.1, -5.5], &mut cap);
+        assert!((b.last()[0] + 3.8).abs() < 1e-15 && b.last()[1] == -5.5);
+        assert!((cap - 5.0).abs() < 1e-14);
+        // A torque that does not drop is dropped (also when equal).
+        b.push_unloading([-3.9, -6.0], &mut cap);
+        b.push_unloading([-3.0, -5.5], &mut cap);
+        assert_eq!(b.n, 2);
+        // Slope (0 + 5.5) / (-1 + 3.8) = 1.964..: accepted, becomes the cap.
+        b.push_unloading([-1.0, 0.0], &mut cap);
+        assert_eq!(b.n, 3);
+        assert!((cap - 5.5 / 2.8).abs() < 1e-15);
+        assert_eq!(b.zero, 2);
+    }
+
+    /// Contact of a rising line with the bound (1,5),(4,6.5),(8,5.5):
+    /// y = 2 (x + 1) is below T_c = 5 up to x = 1 (y = 4 there); on [1, 4]
+    /// the bound is 5 + 0.5 (x - 1): 2x + 2 = 4.5 + 0.5x at x = 5/3.
+    #[test]
+    fn contact_is_exact() {
+        let bound = hysteretic();
+        let mut b = Branch::starting(Kind::Rule, 1.0, [-1.0, 0.0]);
+        b.push_rising([0.0, 2.0]);
+        b.finish(&bound);
+        assert!((b.contact - 5.0 / 3.0).abs() < 1e-12, "{}", b.contact);
+        // A flat ray at 4.9, below every part of the bound, never meets it.
+        let mut flat = Branch::starting(Kind::Rule, 1.0, [-1.0, 0.0]);
+        flat.push_rising([0.0, 4.9]);
+        flat.push_rising([9.0, 4.9]);
+        flat.finish(&bound);
+        assert_eq!(flat.contact, f64::MAX);
+    }
+}
