@@ -21,6 +21,8 @@
 pub mod bwbn;
 mod element;
 pub mod scalar;
+#[cfg(any(test, feature = "selftest"))]
+pub mod selftest;
 
 pub use element::{Element, Response, StepError};
 pub use scalar::{Fixed, Scalar};

@@ -1,0 +1,37 @@
+//! The BWBN cases of the shared test table ([`crate::selftest`]).
+//!
+//! * [`history`]: the OpenSees reference history and parameter sets, in code;
+//! * [`accuracy`]: `f32` and fixed point against `f64` on that history;
+//! * [`element_api`]: trial/commit/revert, refused input, reset;
+//! * [`limits`]: closed forms the model must reproduce.
+
+pub mod accuracy;
+pub mod element_api;
+pub mod history;
+pub mod limits;
+
+use crate::selftest::Case;
+
+/// The BWBN cases.
+pub const CASES: &[Case] = &[
+    ("bwbn::history_has_the_reference_shape", history::shape),
+    ("bwbn::accuracy::plain", accuracy::plain),
+    ("bwbn::accuracy::degrading", accuracy::degrading),
+    ("bwbn::accuracy::pinching", accuracy::pinching),
+    ("bwbn::accuracy::all_four", accuracy::all_four),
+    (
+        "bwbn::element::trial_commit_revert",
+        element_api::trial_commit_revert_all,
+    ),
+    (
+        "bwbn::element::non_finite_input_refused",
+        element_api::non_finite_input_refused,
+    ),
+    ("bwbn::element::reset", element_api::reset),
+    (
+        "bwbn::limits::alpha_one_is_linear_elastic",
+        limits::alpha_one_is_linear_elastic,
+    ),
+    ("bwbn::limits::z_tends_to_zu", limits::z_tends_to_zu),
+    ("bwbn::limits::n_one_closed_form", limits::n_one_closed_form),
+];
