@@ -203,7 +203,7 @@ impl<S: Scalar, X: Effect<S>> Bwbn<S, X> {
             let at = Self::at(u0 + dirv * s, y[0], y[1], dirv);
             let dz = rate::dz_du(p, x, &at)?;
             let k_hys = p.stiffness(x, &at).hys;
-            Ok([dirv * dz, k_hys * y[0]])
+            Ok([dirv * dz, dirv * k_hys * y[0]])
         };
         let y0 = [c.z, c.energy];
         let dy0 = if c.dir == dir {
