@@ -1,5 +1,5 @@
 //! The element contract of [`Element`] (see `src/element.rs`), in every
-//! arithmetic, on the all-effects set in the middle of the largest cycle:
+//! arithmetic, on the all-effects set in the middle of a 4 mm cycle:
 //!
 //! * a trial never changes the committed state, and every trial starts from
 //!   the committed state, not from the previous trial;
@@ -15,15 +15,16 @@ use crate::element::{Element, Response, StepError};
 use crate::scalar::{Fixed, Scalar};
 
 /// Point of the history the element is committed at: on the way down from
-/// +8 mm, at -4.8 mm.
-const AT: usize = 3130;
-/// A trial continuing the same direction (-4.96 mm).
+/// +4 mm, at -2.4 mm, after 4.5 cycles with pinching and degradation active.
+const AT: usize = 1930;
+/// A trial continuing the same direction (-2.48 mm).
 const NEXT: usize = AT + 1;
-/// A trial reversing, with an increment of 0.8 mm (-4.0 mm). (With the
-/// default `f64` control, Dp54 at 1e-9 in 64 sub-steps, a single reversing
-/// increment above about 1.4 mm at this point is refused as
-/// `ToleranceNotMet`: callers subdivide large increments.)
-const FAR: usize = 3125;
+/// A trial reversing, with an increment of 0.4 mm (-2.0 mm). (The default
+/// `f64` control, Dp54 at 1e-9 in at most 64 sub-steps, refuses a single
+/// increment larger than about 4.5 mm from the virgin state, or a reversal
+/// of more than 1.7 mm (plain) to 3.7 mm (all four) from -4.8 mm in the
+/// 8 mm cycles, as `ToleranceNotMet`: callers subdivide large increments.)
+const FAR: usize = 1925;
 
 fn bits<S: Scalar>(x: S) -> u64 {
     x.to_f64().to_bits()

@@ -14,6 +14,9 @@ use crate::scalar::Scalar;
 pub const POINTS: usize = 3601;
 const STEPS_PER_CYCLE: usize = 200;
 const CYCLES_PER_AMPLITUDE: usize = 3;
+/// Points per amplitude: the history returns to 0 after each block of
+/// closed cycles.
+pub const BLOCK: usize = STEPS_PER_CYCLE * CYCLES_PER_AMPLITUDE;
 /// Amplitudes in units of 0.01 mm per quarter-cycle step: A = 0.5 mm is
 /// 50 quarter-cycle steps of 0.01 mm.
 const AMPLITUDE_HALF_MM: [i32; 6] = [1, 2, 4, 8, 12, 16];
@@ -22,8 +25,7 @@ const AMPLITUDE_HALF_MM: [i32; 6] = [1, 2, 4, 8, 12, 16];
 /// `A * t / 50` with `t` the position on the triangle wave (-50..=50),
 /// computed as one rounded division `(2A t) / 100` in the arithmetic `S`.
 pub fn displacement<S: Scalar>(i: usize) -> S {
-    let block = STEPS_PER_CYCLE * CYCLES_PER_AMPLITUDE;
-    let amplitude = AMPLITUDE_HALF_MM[i.saturating_sub(1) / block];
+    let amplitude = AMPLITUDE_HALF_MM[i.saturating_sub(1) / BLOCK];
     let k = (i % STEPS_PER_CYCLE) as i32;
     let tri = match k {
         0..=50 => k,
@@ -150,6 +152,17 @@ impl Set {
     pub fn params<S: Scalar>(self) -> BwbnParams<S> {
         BwbnParams::from_named(self.effects(), |name| self.value(name).map(S::from_f64))
             .expect("the reference sets are valid")
+    }
+
+    /// The parameter set in `S` with every value first rounded to the
+    /// arithmetic `R` (for example, `f64` with the values a fixed-point
+    /// element holds), to separate parameter rounding from arithmetic error.
+    pub fn params_rounded_via<R: Scalar, S: Scalar>(self) -> BwbnParams<S> {
+        BwbnParams::from_named(self.effects(), |name| {
+            self.value(name)
+                .map(|v| S::from_f64(R::from_f64(v).to_f64()))
+        })
+        .expect("the reference sets are valid")
     }
 }
 

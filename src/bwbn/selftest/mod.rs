@@ -1,7 +1,8 @@
 //! The BWBN cases of the shared test table ([`crate::selftest`]).
 //!
 //! * [`history`]: the OpenSees reference history and parameter sets, in code;
-//! * [`accuracy`]: `f32` and fixed point against `f64` on that history;
+//! * [`accuracy`]: `f32` and fixed point against `f64` on that history, and
+//!   the energy balance over its closed cycles;
 //! * [`element_api`]: trial/commit/revert, refused input, reset;
 //! * [`limits`]: closed forms the model must reproduce.
 
@@ -15,10 +16,10 @@ use crate::selftest::Case;
 /// The BWBN cases.
 pub const CASES: &[Case] = &[
     ("bwbn::history_has_the_reference_shape", history::shape),
-    ("bwbn::accuracy::plain", accuracy::plain),
-    ("bwbn::accuracy::degrading", accuracy::degrading),
-    ("bwbn::accuracy::pinching", accuracy::pinching),
-    ("bwbn::accuracy::all_four", accuracy::all_four),
+    ("bwbn::reference_history::plain", accuracy::plain),
+    ("bwbn::reference_history::degrading", accuracy::degrading),
+    ("bwbn::reference_history::pinching", accuracy::pinching),
+    ("bwbn::reference_history::all_four", accuracy::all_four),
     (
         "bwbn::element::trial_commit_revert",
         element_api::trial_commit_revert_all,
