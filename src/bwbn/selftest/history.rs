@@ -8,7 +8,7 @@
 //! Parameters (kN, mm): alpha 0.2, k0 6, n 1.2, beta 2, gamma -1.
 
 use crate::bwbn::{BoucWen, BwbnParams, EffectKind, EffectSet};
-use crate::scalar::Scalar;
+use crate::scalar::{Fixed, Scalar};
 
 /// Number of points of the history.
 pub const POINTS: usize = 3601;
@@ -154,13 +154,13 @@ impl Set {
             .expect("the reference sets are valid")
     }
 
-    /// The parameter set in `S` with every value first rounded to the
-    /// arithmetic `R` (for example, `f64` with the values a fixed-point
-    /// element holds), to separate parameter rounding from arithmetic error.
-    pub fn params_rounded_via<R: Scalar, S: Scalar>(self) -> BwbnParams<S> {
+    /// The parameter set in `S` with every value first rounded to Q15.16:
+    /// the values a fixed-point element holds, exact in `f32` and `f64` as
+    /// well, so that elements in different arithmetics run the same model.
+    pub fn params_q16<S: Scalar>(self) -> BwbnParams<S> {
         BwbnParams::from_named(self.effects(), |name| {
             self.value(name)
-                .map(|v| S::from_f64(R::from_f64(v).to_f64()))
+                .map(|v| S::from_f64(Fixed::from_f64(v).to_f64()))
         })
         .expect("the reference sets are valid")
     }
