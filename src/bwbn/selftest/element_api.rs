@@ -4,13 +4,14 @@
 //! * a trial never changes the committed state, and every trial starts from
 //!   the committed state, not from the previous trial;
 //! * revert and then the same trial gives bit-identical results;
-//! * non-finite input is refused with [`StepError::NonFiniteInput`] and
-//!   changes nothing (not even a pending trial);
+//! * non-finite input is refused with [`StepError::NonFiniteInput`], a step
+//!   beyond the sub-step budget with [`StepError::ToleranceNotMet`], and
+//!   neither changes anything (not even a pending trial);
 //! * reset returns to the virgin state, from which the history repeats bit
 //!   for bit.
 
 use super::history::{displacement, Set};
-use crate::bwbn::{Bwbn, State};
+use crate::bwbn::{Bwbn, Control, State};
 use crate::element::{Element, Response, StepError};
 use crate::scalar::{Fixed, Scalar};
 
@@ -128,7 +129,36 @@ fn trial_commit_revert<S: Scalar>() {
     );
 }
 
-fn non_finite_refused<S: Scalar>() {
+/// Checks that `el` still holds `committed`, the pending trial `pending`
+/// and its response `response` after a refused step.
+fn unchanged<S: Scalar>(
+    el: &Bwbn<S>,
+    committed: &State<S>,
+    pending: &State<S>,
+    response: Response<S>,
+    what: &str,
+) {
+    assert!(
+        same_state(el.committed(), committed),
+        "{}: {} changed the committed state",
+        S::NAME,
+        what
+    );
+    assert!(
+        same_state(el.trial(), pending),
+        "{}: {} changed the pending trial",
+        S::NAME,
+        what
+    );
+    assert!(
+        same_response(el.response(), response),
+        "{}: {} changed the response",
+        S::NAME,
+        what
+    );
+}
+
+fn refused_steps_change_nothing<S: Scalar>() {
     let mut el = driven::<S>(AT);
     let ra = trial(&mut el, NEXT);
     let (committed, pending) = (*el.committed(), *el.trial());
@@ -140,22 +170,21 @@ fn non_finite_refused<S: Scalar>() {
             "{}: non-finite input not refused as such",
             S::NAME
         );
-        assert!(
-            same_state(el.committed(), &committed),
-            "{}: refused input changed the committed state",
-            S::NAME
-        );
-        assert!(
-            same_state(el.trial(), &pending),
-            "{}: refused input changed the pending trial",
-            S::NAME
-        );
-        assert!(
-            same_response(el.response(), ra),
-            "{}: refused input changed the response",
-            S::NAME
-        );
+        unchanged(&el, &committed, &pending, ra, "non-finite input");
     }
+    // A budget of 2 sub-steps cannot cover a 6.4 mm reversal: the step is
+    // refused for its tolerance, and nothing changes either.
+    let control = Control {
+        max_substeps: 2,
+        ..*el.control()
+    };
+    let mut el = el.with_control(control);
+    assert!(
+        el.set_trial(S::from_i32(4)) == Err(StepError::ToleranceNotMet),
+        "{}: a step beyond the sub-step budget was not refused",
+        S::NAME
+    );
+    unchanged(&el, &committed, &pending, ra, "a step beyond the budget");
     el.commit();
     assert!(
         same_state(el.committed(), &pending),
@@ -209,11 +238,12 @@ pub fn trial_commit_revert_all() {
     trial_commit_revert::<Fixed>();
 }
 
-/// NaN and infinities are refused and change nothing.
-pub fn non_finite_input_refused() {
-    non_finite_refused::<f64>();
-    non_finite_refused::<f32>();
-    non_finite_refused::<Fixed>();
+/// NaN and infinities, and a step beyond the sub-step budget, are refused
+/// and change nothing.
+pub fn refused_steps() {
+    refused_steps_change_nothing::<f64>();
+    refused_steps_change_nothing::<f32>();
+    refused_steps_change_nothing::<Fixed>();
 }
 
 /// Reset gives the virgin element back.

@@ -25,8 +25,8 @@ pub const CASES: &[Case] = &[
         element_api::trial_commit_revert_all,
     ),
     (
-        "bwbn::element::non_finite_input_refused",
-        element_api::non_finite_input_refused,
+        "bwbn::element::refused_steps_change_nothing",
+        element_api::refused_steps,
     ),
     ("bwbn::element::reset", element_api::reset),
     (
