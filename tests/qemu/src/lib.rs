@@ -19,8 +19,7 @@ pub const EXIT_PANIC: i32 = 101;
 /// Exit code of a HardFault.
 pub const EXIT_FAULT: i32 = 102;
 
-/// A named test body that panics on failure.
-pub type Case = (&'static str, fn());
+pub use hysteresis::selftest::Case;
 
 /// A running case: name, index, number of cases.
 type Running = (&'static str, usize, usize);
