@@ -27,6 +27,8 @@ pub mod bwbn;
 mod element;
 pub mod phm;
 pub mod scalar;
+#[cfg(any(test, feature = "selftest"))]
+pub mod selftest;
 
 pub use element::{Element, Response, StepError};
 pub use scalar::{Fixed, Scalar};

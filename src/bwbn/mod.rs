@@ -48,6 +48,8 @@ pub mod effects;
 mod integrate;
 mod params;
 mod rate;
+#[cfg(any(test, feature = "selftest"))]
+pub mod selftest;
 mod spec;
 
 pub use base::{BoucWen, PARAMS as BASE_PARAMS};

@@ -267,10 +267,50 @@ impl Scalar for Fixed {
     const EPSILON: Self = Fixed(1);
     const NAME: &'static str = "q16";
 
+    /// Rounds to nearest (ties away from zero), saturating; NaN becomes the
+    /// positive saturated value, as in [`from_f64`](Scalar::from_f64).
+    ///
+    /// Integer operations on the bits of `x` only: constant arguments fold
+    /// at compile time, and a call with a run-time argument (a table
+    /// indexed in a loop, such as the integrator's step-size thresholds)
+    /// pulls no soft-float routine into FPU-less firmware.
     #[inline(always)]
     fn lit(x: f32) -> Self {
-        let v = x * ONE_RAW as f32;
-        Fixed(if v >= 0.0 { v + 0.5 } else { v - 0.5 } as i32)
+        let bits = x.to_bits();
+        let negative = bits >> 31 != 0;
+        let biased = ((bits >> 23) & 0xff) as i32;
+        let fraction = (bits & 0x7f_ffff) as u64;
+        if biased == 0xff {
+            return if fraction != 0 || !negative {
+                Fixed(POS_INF)
+            } else {
+                Fixed(NEG_INF)
+            };
+        }
+        // |x| = mantissa * 2^(exponent), so |x| * 2^16 = mantissa * 2^shift.
+        let (mantissa, exponent) = if biased == 0 {
+            (fraction, -149)
+        } else {
+            (fraction | 1 << 23, biased - 150)
+        };
+        let shift = exponent + FRAC as i32;
+        let magnitude = if shift >= 0 {
+            if shift > 16 {
+                // At least 2^(23 + 17) > i32::MAX: saturate.
+                return if negative {
+                    Fixed(NEG_INF)
+                } else {
+                    Fixed(POS_INF)
+                };
+            }
+            (mantissa << shift) as i64
+        } else if shift < -40 {
+            0
+        } else {
+            let s = (-shift) as u32;
+            ((mantissa + (1 << (s - 1))) >> s) as i64
+        };
+        Fixed::from_wide(if negative { -magnitude } else { magnitude })
     }
     #[inline]
     fn from_f64(x: f64) -> Self {
@@ -349,6 +389,35 @@ mod tests {
 
     fn fx(x: f64) -> Fixed {
         Fixed::from_f64(x)
+    }
+
+    #[test]
+    fn lit_equals_from_f64_on_a_sweep_of_f32_bit_patterns() {
+        // Every 251st bit pattern (17 million values): normals, subnormals,
+        // zeros, infinities, NaNs, ties and saturation on both sides.
+        let mut bits = 0u32;
+        loop {
+            let x = f32::from_bits(bits);
+            assert_eq!(
+                Fixed::lit(x),
+                Fixed::from_f64(x as f64),
+                "{x:e} ({bits:#010x})"
+            );
+            match bits.checked_add(251) {
+                Some(b) => bits = b,
+                None => break,
+            }
+        }
+        for x in [
+            0.5 / 65536.0,
+            -0.5 / 65536.0,
+            1.5 / 65536.0,
+            32767.99,
+            -32768.0,
+            32768.0,
+        ] {
+            assert_eq!(Fixed::lit(x), Fixed::from_f64(x as f64), "{x:e}");
+        }
     }
 
     #[test]

@@ -1,0 +1,61 @@
+//! Instructions per step of the BWBN element on the reference history, for
+//! each arithmetic and integration tolerance (`step-cost.sh` counts them
+//! exactly with the `qemu-insn` plugin; not run by `scripts/test`).
+//!
+//! Each case steps a fresh element over the 3600 increments of the history
+//! between the markers `bench_start` and `bench_stop`, after printing `case
+//! NAME`; `step-cost.sh` divides the count by 3600.
+#![no_std]
+#![no_main]
+
+use core::hint::black_box;
+use hysteresis::bwbn::selftest::history::{displacement, Set, POINTS};
+use hysteresis::bwbn::{Bwbn, Control, Method};
+use hysteresis::{Element, Fixed, Scalar};
+
+/// Start marker: the plugin counts from its first instruction.
+#[no_mangle]
+#[inline(never)]
+pub extern "C" fn bench_start() {
+    cortex_m::asm::nop();
+}
+
+/// Stop marker (a different body, so the linker cannot fold the two).
+#[no_mangle]
+#[inline(never)]
+pub extern "C" fn bench_stop() {
+    cortex_m::asm::nop();
+    cortex_m::asm::nop();
+}
+
+fn case<S: Scalar>(name: &str, set: Set, control: Control<S>) {
+    let mut el = Bwbn::<S>::new(black_box(set.params_q16())).with_control(control);
+    defmt::println!("case {}/{}/{}", set.name(), S::NAME, name);
+    bench_start();
+    for i in 1..POINTS {
+        if el.set_trial(black_box(displacement::<S>(i))).is_err() {
+            defmt::panic!("point {} refused", i);
+        }
+        el.commit();
+    }
+    bench_stop();
+}
+
+fn bs32(tol: f32) -> Control<Fixed> {
+    Control {
+        method: Method::Bs32,
+        tol: Fixed::lit(tol),
+        ..Control::default_for()
+    }
+}
+
+#[cortex_m_rt::entry]
+fn main() -> ! {
+    for set in [Set::Plain, Set::All] {
+        case::<f32>("default", set, Control::default_for());
+        case::<Fixed>("default", set, Control::default_for());
+        case::<Fixed>("tol-5e-4", set, bs32(5e-4));
+        case::<Fixed>("tol-2e-4", set, bs32(2e-4));
+    }
+    hysteresis_qemu::exit(0)
+}
