@@ -18,7 +18,7 @@
 pub type Case = (&'static str, fn());
 
 /// The per-module case lists, in the order they run.
-const GROUPS: &[&[Case]] = &[crate::bwbn::selftest::CASES];
+const GROUPS: &[&[Case]] = &[crate::bwbn::selftest::CASES, crate::phm::selftest::CASES];
 
 /// Every case of the library, in order.
 pub const CASES: &[Case] = &ALL;
