@@ -4,7 +4,8 @@
 //! elsewhere.
 //!
 //! One generation: binary tournaments by the crowded comparison (rank, then crowding distance)
-//! pick parents; crossover and mutation make as many children as there are parents; the children
+//! pick parents; crossover and mutation make as many children as there are parents (by default
+//! none a copy of a parent or of another child: [`Nsga2::eliminate_duplicates`]); the children
 //! are evaluated (in parallel); parents and children are merged, sorted into non-dominated
 //! fronts under constraint domination (Deb 2000), and the best half survives, the last front
 //! admitted being cut by crowding distance.
