@@ -13,7 +13,8 @@
 //!
 //! Run with `cargo bench --bench math`.
 
-use criterion::{black_box, criterion_group, criterion_main, Criterion};
+use criterion::{criterion_group, criterion_main, Criterion};
+use std::hint::black_box;
 use hysteresis::Scalar;
 
 const N: usize = 1024;

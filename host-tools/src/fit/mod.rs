@@ -4,6 +4,7 @@ pub mod experiment;
 pub mod homotopy;
 pub mod identifiability;
 pub mod lsq;
+pub mod nsga2;
 pub mod objectives;
 pub mod parametrization;
 pub mod problem;
