@@ -14,8 +14,8 @@
 //! Run with `cargo bench --bench math`.
 
 use criterion::{criterion_group, criterion_main, Criterion};
-use std::hint::black_box;
 use hysteresis::Scalar;
+use std::hint::black_box;
 
 const N: usize = 1024;
 

@@ -6,9 +6,10 @@
 //!
 //!     cargo bench -p hysteresis-host --bench nsga2
 
-use criterion::{black_box, criterion_group, criterion_main, Criterion};
+use criterion::{criterion_group, criterion_main, Criterion};
 use hyst::fit::nsga2::test_problems::{Zdt, ZdtKind};
 use hyst::fit::nsga2::Nsga2;
+use std::hint::black_box;
 
 fn zdt1(c: &mut Criterion) {
     let problem = Zdt::new(ZdtKind::Zdt1, 30);
