@@ -2,8 +2,9 @@
 
 use crate::data::{self, ReadOptions};
 use crate::fit::experiment::Experiment;
+use crate::fit::nsga2::{BinaryCrossover, Encoding, Nsga2};
 use crate::fit::problem::Problem;
-use crate::fit::run::{self, Method, Outcome, Progress};
+use crate::fit::run::{self, Evolution, Method, Outcome, Progress};
 use crate::model::{to_json, ModelSpec};
 use anyhow::{anyhow, bail, Context, Result};
 use clap::Args;
@@ -39,6 +40,46 @@ pub struct FitArgs {
     /// Print one JSON object instead of the text summary.
     #[arg(long)]
     pub json: bool,
+    /// NSGA-II: population size.
+    #[arg(long, default_value_t = 100)]
+    pub population: usize,
+    /// NSGA-II: generations (counting the initial population).
+    #[arg(long, default_value_t = 100)]
+    pub generations: usize,
+    /// NSGA-II: seed of the random stream (runs are reproducible).
+    #[arg(long, default_value_t = 1)]
+    pub seed: u64,
+    /// NSGA-II: bits per variable for the binary-coded variant the thesis
+    /// describes (default: real-coded, SBX and polynomial mutation).
+    #[arg(long)]
+    pub bits: Option<u32>,
+    /// NSGA-II: write the final Pareto front (parameters and the four
+    /// objectives) as CSV.
+    #[arg(long)]
+    pub pareto: Option<PathBuf>,
+}
+
+impl FitArgs {
+    /// The evolutionary settings of these arguments.
+    pub fn evolution(&self) -> Evolution {
+        let encoding = match self.bits {
+            Some(bits) => Encoding::Binary {
+                bits,
+                crossover: BinaryCrossover::SinglePoint,
+            },
+            None => Encoding::REAL,
+        };
+        Evolution {
+            nsga2: Nsga2 {
+                population: self.population,
+                generations: self.generations,
+                seed: self.seed,
+                encoding,
+                ..Nsga2::default()
+            },
+            front_csv: self.pareto.clone(),
+        }
+    }
 }
 
 /// Parses `name=value`.
@@ -85,6 +126,9 @@ impl Progress for Bar {
     }
     fn stage(&self, message: &str) {
         self.0.println(format!("  {message}"));
+    }
+    fn status(&self, message: &str) {
+        self.0.set_message(message.to_string());
     }
 }
 
@@ -145,7 +189,16 @@ pub fn run(args: FitArgs) -> Result<()> {
     let method: Method = args.method.parse()?;
     let bar = Bar::new(&format!("fit {} ({method})", args.model), args.json);
     let t0 = Instant::now();
-    let outcome = run::fit(&problem, method, &problem.par.default_start(), &bar)?;
+    if args.pareto.is_some() && method != Method::Nsga2 {
+        bail!("--pareto writes the NSGA-II front: use it with --method nsga2");
+    }
+    let outcome = run::fit_with(
+        &problem,
+        method,
+        &problem.par.default_start(),
+        &args.evolution(),
+        &bar,
+    )?;
     bar.finish();
     let seconds = t0.elapsed().as_secs_f64();
     let file = fit_json(&problem, &outcome, &args.data, seconds)?;

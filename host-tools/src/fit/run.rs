@@ -5,8 +5,9 @@
 use super::homotopy;
 use super::identifiability::{self, Identifiability};
 use super::lsq::{self, Options};
+use super::nsga2::Nsga2;
 use super::objectives::Scores;
-use super::problem::Problem;
+use super::problem::{Ortiz, Problem};
 use anyhow::{anyhow, bail, Result};
 use rayon::prelude::*;
 use std::collections::BTreeMap;
@@ -21,6 +22,9 @@ pub enum Method {
     Lsq,
     /// Homotopy with the observer coupling of eq. 4.6 (force drive).
     Homotopy,
+    /// NSGA-II on the four Ortiz objectives (thesis ch. 3), with the thesis'
+    /// choice of one solution from the front.
+    Nsga2,
     /// Levenberg-Marquardt from several starts in parallel, best kept.
     Auto,
 }
@@ -31,6 +35,7 @@ impl FromStr for Method {
         Ok(match s {
             "lsq" => Method::Lsq,
             "homotopy" => Method::Homotopy,
+            "nsga2" => Method::Nsga2,
             "auto" => Method::Auto,
             other => bail!("unknown method `{other}`: expected lsq, homotopy, nsga2 or auto"),
         })
@@ -42,6 +47,7 @@ impl std::fmt::Display for Method {
         f.write_str(match self {
             Method::Lsq => "lsq",
             Method::Homotopy => "homotopy",
+            Method::Nsga2 => "nsga2",
             Method::Auto => "auto",
         })
     }
@@ -68,8 +74,10 @@ pub struct Outcome {
 pub trait Progress: Sync {
     /// A better point was found: `evaluations` so far, current NRMSE.
     fn improved(&self, evaluations: usize, nrmse: f64);
-    /// A stage finished (homotopy lambda, start number...).
+    /// A stage finished (homotopy lambda, start number...): a line to keep.
     fn stage(&self, message: &str);
+    /// The current status (replaces the previous one).
+    fn status(&self, message: &str);
 }
 
 /// Reports nothing.
@@ -78,6 +86,7 @@ pub struct Quiet;
 impl Progress for Quiet {
     fn improved(&self, _: usize, _: f64) {}
     fn stage(&self, _: &str) {}
+    fn status(&self, _: &str) {}
 }
 
 /// Seeded starting points: `x0`, then points drawn uniformly in the middle
@@ -102,6 +111,30 @@ pub fn starts(x0: &[f64], lo: &[f64], hi: &[f64], count: usize, seed: u64) -> Ve
     out
 }
 
+/// Settings of the evolutionary search.
+#[derive(Clone, Debug)]
+pub struct Evolution {
+    /// NSGA-II settings (population, generations, encoding, seed).
+    pub nsga2: Nsga2,
+    /// Where to write the final Pareto front (physical parameter values and
+    /// the four objectives), if anywhere.
+    pub front_csv: Option<std::path::PathBuf>,
+}
+
+impl Default for Evolution {
+    fn default() -> Self {
+        Evolution {
+            nsga2: Nsga2 {
+                population: 100,
+                generations: 100,
+                seed: 1,
+                ..Nsga2::default()
+            },
+            front_csv: None,
+        }
+    }
+}
+
 /// Fits `problem` from `x0` with `method`.
 pub fn fit(
     problem: &Problem,
@@ -109,6 +142,20 @@ pub fn fit(
     x0: &[f64],
     progress: &dyn Progress,
 ) -> Result<Outcome> {
+    fit_with(problem, method, x0, &Evolution::default(), progress)
+}
+
+/// [`fit`] with explicit settings for [`Method::Nsga2`].
+pub fn fit_with(
+    problem: &Problem,
+    method: Method,
+    x0: &[f64],
+    evolution: &Evolution,
+    progress: &dyn Progress,
+) -> Result<Outcome> {
+    if method == Method::Nsga2 {
+        return evolve(problem, evolution, progress);
+    }
     let (lo, hi) = problem.par.bounds();
     let evals = AtomicUsize::new(0);
     let best = Mutex::new(f64::INFINITY);
@@ -140,6 +187,7 @@ pub fn fit(
                 .collect();
             sols.into_iter().min_by(|a, b| a.cost.total_cmp(&b.cost))
         }
+        Method::Nsga2 => unreachable!("handled above"),
         Method::Homotopy => {
             if problem.observer_gains().is_none() {
                 bail!(
@@ -176,6 +224,59 @@ pub fn fit(
         &method.to_string(),
         sol,
         evals.load(Ordering::Relaxed),
+    )
+}
+
+/// NSGA-II on the Ortiz objectives; the thesis' solution (nearest the origin
+/// of the normalised front).
+fn evolve(problem: &Problem, evolution: &Evolution, progress: &dyn Progress) -> Result<Outcome> {
+    let ortiz = Ortiz::new(problem);
+    let settings = &evolution.nsga2;
+    let outcome = settings
+        .run_with(&ortiz, |g| {
+            if let Some(best) = g.best_objectives() {
+                progress.status(&format!(
+                    "generation {}/{}, {} simulations: best f1 {:.3e}, f2 {:.3e}, f3 {:.3e}, f4 {:.3e}; front {} of {}",
+                    g.index + 1,
+                    settings.generations,
+                    g.evaluations,
+                    best[0],
+                    best[1],
+                    best[2],
+                    best[3],
+                    g.first_front_len(),
+                    g.population.len()
+                ));
+            }
+            std::ops::ControlFlow::Continue(())
+        })
+        .map_err(|e| anyhow!("NSGA-II: {e}"))?;
+    let chosen = outcome.chosen().ok_or_else(|| {
+        anyhow!("NSGA-II found no feasible parameter set (beta + gamma > 0, beta - gamma > 0)")
+    })?;
+    if let Some(path) = &evolution.front_csv {
+        ortiz.write_front(path, &outcome.first_front())?;
+    }
+    let x = chosen.variables.clone();
+    let (lo, hi) = problem.par.bounds();
+    let f = |x: &[f64]| problem.residuals(x);
+    let r = f(&x).ok_or_else(|| anyhow!("the chosen parameter set cannot be simulated"))?;
+    let jacobian = lsq::jacobian(&f, &x, &r, &lo, &hi, Options::default().fd_step)
+        .ok_or_else(|| anyhow!("the model cannot be simulated next to the chosen parameter set"))?;
+    let cost = r.iter().map(|v| v * v).sum();
+    let sol = lsq::Solution {
+        x,
+        residuals: r,
+        cost,
+        jacobian,
+        iterations: settings.generations,
+        evaluations: 0,
+    };
+    finish(
+        problem,
+        "nsga2",
+        sol,
+        outcome.evaluations + problem.dim() + 1,
     )
 }
 
