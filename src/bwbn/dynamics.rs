@@ -99,22 +99,7 @@ impl<S: Scalar> Sdof<S> {
     /// parameters are converted to per unit mass (`k0 / mass`; degradation
     /// rates then refer to energy per unit mass).
     pub fn from_physical(params: BwbnParams<S>, mass: S, xi: S) -> Result<Self, ParamError> {
-        if !mass.is_finite() {
-            return Err(ParamError::new("m", Rule::NotFinite));
-        }
-        if mass <= S::ZERO {
-            return Err(ParamError::new("m", Rule::NotPositive));
-        }
-        let set = params.effect_set();
-        let normalised = BwbnParams::from_named(set, |name| {
-            if name == "k0" {
-                Some(params.base().k0 / mass)
-            } else {
-                params.get(name)
-            }
-        })?
-        .with_zu_rule(params.zu_rule());
-        Self::new(normalised, xi)
+        Self::new(params.per_unit_mass(mass)?, xi)
     }
 }
 

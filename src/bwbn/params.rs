@@ -94,6 +94,26 @@ impl<S: Scalar> BwbnParams<S> {
         self
     }
 
+    /// The same set per unit mass: `k0 / mass` (the oscillator's `w0^2`),
+    /// everything else unchanged, for [`Sdof`](super::Sdof).
+    pub fn per_unit_mass(&self, mass: S) -> Result<Self, ParamError> {
+        if !mass.is_finite() {
+            return Err(ParamError::new("m", Rule::NotFinite));
+        }
+        if mass <= S::ZERO {
+            return Err(ParamError::new("m", Rule::NotPositive));
+        }
+        let k0 = self.base.k0 / mass;
+        Ok(Self::from_named(self.effect_set(), |name| {
+            if name == "k0" {
+                Some(k0)
+            } else {
+                self.get(name)
+            }
+        })?
+        .with_zu_rule(self.zu_rule()))
+    }
+
     /// How pinching computes Zu ([`ZuRule::Thesis`] without pinching).
     pub fn zu_rule(&self) -> ZuRule {
         self.effects

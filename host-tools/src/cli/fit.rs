@@ -152,15 +152,16 @@ pub fn fit_json(
     data: &std::path::Path,
     seconds: f64,
 ) -> Result<Value> {
-    let (params, xi) = problem
+    let candidate = problem
         .par
         .build(&outcome.x)
         .map_err(|e| anyhow!("fitted set rejected: {e}"))?;
     let mut extra = vec![];
     if let crate::fit::experiment::Drive::Force { mass, .. } = problem.exp.drive {
-        extra.push(("xi", xi));
+        extra.push(("xi", candidate.xi));
         extra.push(("m", mass * 1e6));
     }
+    let limit = Some(candidate.params.energy_limit());
     let meta = json!({
         "data": data.display().to_string(),
         "method": outcome.method,
@@ -172,7 +173,8 @@ pub fn fit_json(
     });
     Ok(to_json(
         problem.par.spec,
-        &params,
+        &outcome.values,
+        limit,
         &extra,
         Some(("mm", "kN")),
         Some(meta),

@@ -3,11 +3,12 @@
 //! as CSV to standard output (or `--out`), optionally with a plot of the loop.
 
 use crate::data::{self, Channel, ReadOptions};
+use crate::model::Extras;
 use crate::model::{ModelSpec, ParamFile};
 use crate::report::plots::{loop_overlay, Quantity, Trace};
 use anyhow::{anyhow, Context, Result};
 use clap::Args;
-use hysteresis::bwbn::Bwbn;
+use hysteresis::bwbn::{Bwbn, Control};
 use hysteresis::Element;
 use std::io::Write;
 use std::path::PathBuf;
@@ -47,8 +48,12 @@ pub struct Simulation {
 }
 
 /// Runs the element over a displacement history.
-pub fn simulate(params: &hysteresis::bwbn::BwbnParams<f64>, u: &[f64]) -> Result<Simulation> {
-    let mut el = Bwbn::new(*params);
+pub fn simulate(
+    params: &hysteresis::bwbn::BwbnParams<f64>,
+    extras: &Extras,
+    u: &[f64],
+) -> Result<Simulation> {
+    let mut el = Bwbn::with_extra(*params, extras, Control::default_for());
     let mut s = Simulation {
         displacement: vec![],
         force: vec![],
@@ -72,7 +77,7 @@ pub fn simulate(params: &hysteresis::bwbn::BwbnParams<f64>, u: &[f64]) -> Result
 pub fn run(args: SimulateArgs) -> Result<()> {
     let file = ParamFile::read(&args.params)?;
     let spec = file.spec(args.model)?;
-    let params = file.build(spec, false)?;
+    let (params, extras) = file.build(spec, false)?;
     let record = data::read(
         &args.history,
         &ReadOptions::default().input(Channel::Displacement),
@@ -83,7 +88,7 @@ pub fn run(args: SimulateArgs) -> Result<()> {
     let u = record
         .displacement()
         .ok_or_else(|| anyhow!("{}: no displacement column", args.history.display()))?;
-    let sim = simulate(&params, u)?;
+    let sim = simulate(&params, &extras, u)?;
     let mut out: Box<dyn Write> = match &args.out {
         Some(p) => Box::new(
             std::fs::File::create(p).with_context(|| format!("{}: cannot create", p.display()))?,

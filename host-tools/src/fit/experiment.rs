@@ -7,6 +7,7 @@
 //!   The applied force drives the oscillator of eqs 3.13-3.17 ([`Sdof`]); the
 //!   model predicts the displacement.
 
+use crate::model::Extras;
 use hysteresis::bwbn::{Bwbn, BwbnParams, Control, Observer, Sdof};
 use hysteresis::{Element, StepError};
 
@@ -97,14 +98,16 @@ impl Experiment {
         }
     }
 
-    /// Simulates the model with `params` (`xi` for force drive) on the record.
+    /// Simulates the model with `params` and custom effects `extras` (`xi`
+    /// for force drive) on the record.
     pub fn simulate(
         &self,
         params: &BwbnParams<f64>,
+        extras: &Extras,
         xi: f64,
         control: Control<f64>,
     ) -> Result<Prediction, SimError> {
-        self.simulate_observed(params, xi, control, None)
+        self.simulate_observed(params, extras, xi, control, None)
     }
 
     /// Like [`simulate`](Self::simulate), with the observer coupling of thesis
@@ -113,6 +116,7 @@ impl Experiment {
     pub fn simulate_observed(
         &self,
         params: &BwbnParams<f64>,
+        extras: &Extras,
         xi: f64,
         control: Control<f64>,
         observer: Option<Observer<f64>>,
@@ -126,7 +130,7 @@ impl Experiment {
         };
         match self.drive {
             Drive::Displacement => {
-                let mut el = Bwbn::new(*params).with_control(control);
+                let mut el = Bwbn::with_extra(*params, extras, control);
                 for (i, &u) in self.input.iter().enumerate() {
                     let r = el.set_trial(u).map_err(|e| SimError::Step(i, e))?;
                     el.commit();
@@ -137,13 +141,13 @@ impl Experiment {
                 }
             }
             Drive::Force { dt, mass } => {
-                let mut osc = Sdof::from_physical(*params, mass, xi)
-                    .map_err(SimError::Params)?
-                    .with_control(control);
+                let per_mass = params.per_unit_mass(mass).map_err(SimError::Params)?;
+                let mut osc =
+                    Sdof::with_extra(per_mass, xi, extras, control).map_err(SimError::Params)?;
                 let first = self.input.first().copied().unwrap_or(0.0);
                 osc.set_forcing(first / mass)
                     .map_err(|e| SimError::Step(0, e))?;
-                let record = |osc: &Sdof<f64>, out: &mut Prediction| {
+                let record = |osc: &Sdof<f64, &Extras>, out: &mut Prediction| {
                     let s = osc.state();
                     out.output.push(s.u);
                     out.displacement.push(s.u);

@@ -11,9 +11,9 @@
 //! benchmark in m and N. Results are converted back before they are reported.
 
 use super::experiment::{Drive, Experiment};
-use crate::model::ModelSpec;
+use crate::model::{Extras, ModelSpec};
 use anyhow::{bail, Result};
-use hysteresis::bwbn::{specs, BwbnParams, ParamError, ParamSpec, Unit};
+use hysteresis::bwbn::{BwbnParams, ParamError, ParamSpec, Unit};
 use std::collections::BTreeMap;
 
 /// Reference scales of a record.
@@ -161,8 +161,9 @@ impl Parametrization {
     /// default bounds.
     pub fn new(spec: ModelSpec, exp: &Experiment, fixed: &[(String, f64)]) -> Result<Self> {
         let dynamic = matches!(exp.drive, Drive::Force { .. });
-        let all: Vec<ParamSpec> = specs(spec.effects)
-            .copied()
+        let all: Vec<ParamSpec> = spec
+            .params()
+            .into_iter()
             .chain(dynamic.then_some(XI))
             .collect();
         let mut fixed_map = BTreeMap::new();
@@ -273,18 +274,33 @@ impl Parametrization {
             .collect()
     }
 
-    /// The model parameter set (and xi) at `x`.
-    pub fn build(&self, x: &[f64]) -> Result<(BwbnParams<f64>, f64), ParamError> {
+    /// The model (parameter set, custom effects) and xi at `x`.
+    pub fn build(&self, x: &[f64]) -> Result<Candidate, ParamError> {
         let values = self.physical(x);
         let limit = self.energy_limit;
-        let params = BwbnParams::from_named(self.spec.effects, |name| {
+        let (params, extras) = self.spec.build(|name| {
             if name == hysteresis::bwbn::ENERGY_LIMIT {
                 return limit;
             }
             values.get(name).copied()
         })?;
-        Ok((params, values.get("xi").copied().unwrap_or(0.0)))
+        Ok(Candidate {
+            params,
+            extras,
+            xi: values.get("xi").copied().unwrap_or(0.0),
+        })
     }
+}
+
+/// A model built from a parameter vector.
+#[derive(Debug)]
+pub struct Candidate {
+    /// The core parameter set.
+    pub params: BwbnParams<f64>,
+    /// The custom effects.
+    pub extras: Extras,
+    /// Viscous damping ratio (force drive).
+    pub xi: f64,
 }
 
 #[cfg(test)]

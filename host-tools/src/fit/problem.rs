@@ -3,10 +3,11 @@
 
 use super::experiment::{Drive, Experiment, Prediction};
 use super::objectives::{Scores, Target, ENVELOPE_FLOOR};
+use super::parametrization::Candidate;
 use super::parametrization::Parametrization;
 use crate::model::ModelSpec;
 use anyhow::Result;
-use hysteresis::bwbn::{BwbnParams, Control, Method, Observer};
+use hysteresis::bwbn::{Control, Method, Observer};
 
 /// A model spec fitted to a record.
 #[derive(Clone, Debug)]
@@ -47,15 +48,17 @@ impl Problem {
         self.par.dim()
     }
 
-    /// The parameter set at `x`, if valid.
-    pub fn params(&self, x: &[f64]) -> Option<(BwbnParams<f64>, f64)> {
+    /// The model at `x`, if valid.
+    pub fn params(&self, x: &[f64]) -> Option<Candidate> {
         self.par.build(x).ok()
     }
 
     /// The prediction at `x` (None: invalid parameters or a failed step).
     pub fn predict(&self, x: &[f64]) -> Option<Prediction> {
-        let (p, xi) = self.params(x)?;
-        self.exp.simulate(&p, xi, self.control).ok()
+        let c = self.params(x)?;
+        self.exp
+            .simulate(&c.params, &c.extras, c.xi, self.control)
+            .ok()
     }
 
     /// Scores at `x`.
@@ -89,10 +92,10 @@ impl Problem {
             k_u: lambda * k.k_u,
             k_v: lambda * k.k_v,
         };
-        let (p, xi) = self.params(x)?;
+        let c = self.params(x)?;
         let pred = self
             .exp
-            .simulate_observed(&p, xi, self.control, Some(obs))
+            .simulate_observed(&c.params, &c.extras, c.xi, self.control, Some(obs))
             .ok()?;
         Some(self.target.residuals(&pred))
     }

@@ -13,9 +13,9 @@
 //! {"model": "bw", "k0": 6.0, "alpha": 0.2, "n": 1.2, "beta": 2.0, "gamma": -1.0}
 //! ```
 
-use super::ModelSpec;
+use super::{Extras, ModelSpec};
 use anyhow::{anyhow, bail, Context, Result};
-use hysteresis::bwbn::{specs, BwbnParams, ENERGY_LIMIT};
+use hysteresis::bwbn::{BwbnParams, ENERGY_LIMIT};
 use serde_json::{Map, Value};
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -124,11 +124,9 @@ impl ParamFile {
 
     /// The model parameter set of `spec` (validated), rejecting names that do
     /// not belong to it. `dynamic` allows `m` and `xi`.
-    pub fn build(&self, spec: ModelSpec, dynamic: bool) -> Result<BwbnParams<f64>> {
-        let known: Vec<&str> = specs(spec.effects)
-            .map(|s| s.name)
-            .chain([ENERGY_LIMIT])
-            .collect();
+    pub fn build(&self, spec: ModelSpec, dynamic: bool) -> Result<(BwbnParams<f64>, Extras)> {
+        let all = spec.params();
+        let known: Vec<&str> = all.iter().map(|s| s.name).chain([ENERGY_LIMIT]).collect();
         for name in self.values.keys() {
             let ok =
                 known.contains(&name.as_str()) || (dynamic && DYNAMIC.contains(&name.as_str()));
@@ -144,7 +142,7 @@ impl ParamFile {
                 );
             }
         }
-        BwbnParams::from_named(spec.effects, |n| self.values.get(n).copied())
+        spec.build(|n| self.values.get(n).copied())
             .map_err(|e| anyhow!("{}: {e}", self.path.display()))
     }
 }
@@ -160,22 +158,25 @@ fn kind(v: &Value) -> &'static str {
     }
 }
 
-/// Writes a parameter file: `model`, the parameters of `params` (plus
-/// `extra` such as `xi`, `m`), `units` and `fit`.
+/// Writes a parameter file: `model`, the parameters in `values` (in the
+/// spec's order; plus `extra` such as `xi`, `m`), `units` and `fit`.
 pub fn to_json(
     spec: ModelSpec,
-    params: &BwbnParams<f64>,
+    values: &BTreeMap<&str, f64>,
+    energy_limit: Option<f64>,
     extra: &[(&str, f64)],
     units: Option<(&str, &str)>,
     fit: Option<Value>,
 ) -> Value {
     let mut map = Map::new();
     map.insert("model".into(), Value::String(spec.to_string()));
-    params.for_each(|s, v| {
-        map.insert(s.name.into(), Value::from(v));
-    });
-    if params.energy_limit() < f64::MAX {
-        map.insert(ENERGY_LIMIT.into(), Value::from(params.energy_limit()));
+    for s in spec.params() {
+        if let Some(v) = values.get(s.name) {
+            map.insert(s.name.into(), Value::from(*v));
+        }
+    }
+    if let Some(limit) = energy_limit.filter(|l| *l < f64::MAX) {
+        map.insert(ENERGY_LIMIT.into(), Value::from(limit));
     }
     for (k, v) in extra {
         map.insert((*k).into(), Value::from(*v));
@@ -204,23 +205,27 @@ mod tests {
     fn reads_a_flat_file_and_builds_the_model() {
         let f = parse(r#"{"model": "bw+pinching", "k0": 6, "alpha": 0.2, "n": 1.2, "beta": 2, "gamma": -1, "zeta0": 0.5}"#).unwrap();
         let spec = f.spec(None).unwrap();
-        let p = f.build(spec, false).unwrap();
+        let (p, _) = f.build(spec, false).unwrap();
         assert_eq!(p.get("zeta0"), Some(0.5));
         assert_eq!(
             p.get("lambda"),
             Some(0.5),
             "missing effect parameters take their off values"
         );
-        let back = to_json(spec, &p, &[], Some(("mm", "kN")), None);
+        let mut values = BTreeMap::new();
+        p.for_each(|s, v| {
+            values.insert(s.name, v);
+        });
+        let back = to_json(spec, &values, None, &[], Some(("mm", "kN")), None);
         let again = parse(&back.to_string()).unwrap();
-        assert_eq!(again.build(again.spec(None).unwrap(), false).unwrap(), p);
+        assert_eq!(again.build(again.spec(None).unwrap(), false).unwrap().0, p);
     }
 
     #[test]
     fn errors_name_the_file_and_the_problem() {
         let msg = |t: &str| {
             parse(t)
-                .and_then(|f| f.build(f.spec(Some(ModelSpec::BW))?, false))
+                .and_then(|f| f.build(f.spec(Some(ModelSpec::BW))?, false).map(|m| m.0))
                 .unwrap_err()
                 .to_string()
         };

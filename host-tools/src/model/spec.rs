@@ -9,8 +9,9 @@
 //!
 //! `bwbn` is `bw` with the four effects of the thesis' 17-parameter model.
 
+use super::custom::{self, CustomEffect, Extras};
 use anyhow::{bail, Result};
-use hysteresis::bwbn::{EffectKind, EffectSet};
+use hysteresis::bwbn::{specs, BwbnParams, EffectKind, EffectSet, ParamError, ParamSpec, Rule};
 use std::fmt;
 
 /// The base of a model spec.
@@ -20,13 +21,63 @@ pub enum Base {
     Bw,
 }
 
+/// One effect a spec can hold: built into the core or registered.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum EffectRef {
+    /// A core effect module.
+    Builtin(EffectKind),
+    /// The registered custom effect with this index.
+    Custom(usize),
+}
+
+impl EffectRef {
+    /// Its name in specs.
+    pub fn name(self) -> &'static str {
+        match self {
+            EffectRef::Builtin(k) => k.name(),
+            EffectRef::Custom(i) => custom::registered()[i].name(),
+        }
+    }
+    /// Its parameters.
+    pub fn params(self) -> &'static [ParamSpec] {
+        match self {
+            EffectRef::Builtin(k) => k.params(),
+            EffectRef::Custom(i) => custom::registered()[i].params(),
+        }
+    }
+    /// One sentence on what it models.
+    pub fn doc(self) -> &'static str {
+        match self {
+            EffectRef::Builtin(k) => k.doc(),
+            EffectRef::Custom(i) => custom::registered()[i].doc(),
+        }
+    }
+    /// The effect with this name, built in or registered.
+    pub fn from_name(name: &str) -> Option<Self> {
+        EffectKind::from_name(name)
+            .map(EffectRef::Builtin)
+            .or_else(|| custom::find(name).map(|(i, _)| EffectRef::Custom(i)))
+    }
+    /// Every effect: the built-in ones, then the registered ones.
+    pub fn all() -> Vec<EffectRef> {
+        let mut v: Vec<EffectRef> = EffectKind::ALL
+            .iter()
+            .map(|k| EffectRef::Builtin(*k))
+            .collect();
+        v.extend((0..custom::registered().len()).map(EffectRef::Custom));
+        v
+    }
+}
+
 /// A parsed model spec.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct ModelSpec {
     /// The base model.
     pub base: Base,
-    /// The effects on top of it.
+    /// The built-in effects on top of it.
     pub effects: EffectSet,
+    /// The registered effects on top of it (bit i = registered effect i).
+    pub custom: u32,
 }
 
 impl ModelSpec {
@@ -34,43 +85,113 @@ impl ModelSpec {
     pub const BW: ModelSpec = ModelSpec {
         base: Base::Bw,
         effects: EffectSet::NONE,
+        custom: 0,
     };
 
     /// Parses a spec such as `bw+pinching+strength-degradation`.
     pub fn parse(text: &str) -> Result<Self> {
         let mut parts = text.trim().split('+').map(str::trim);
         let base = parts.next().unwrap_or_default();
-        let mut effects = match base {
-            "bw" => EffectSet::NONE,
-            "bwbn" => EffectSet::BWBN,
+        let mut spec = match base {
+            "bw" => ModelSpec::BW,
+            "bwbn" => ModelSpec { effects: EffectSet::BWBN, ..ModelSpec::BW },
             "" => bail!("empty model spec: expected a base, `bw` or `bwbn`, optionally followed by +effect terms"),
             other => bail!("unknown model base `{other}` in `{text}`: expected `bw` or `bwbn`"),
         };
         for name in parts {
-            let Some(kind) = EffectKind::from_name(name) else {
-                let known: Vec<_> = EffectKind::ALL.iter().map(|k| k.name()).collect();
+            let Some(effect) = EffectRef::from_name(name) else {
+                let known: Vec<_> = EffectRef::all().iter().map(|e| e.name()).collect();
                 bail!(
                     "unknown effect `{name}` in `{text}`: known effects are {}",
                     known.join(", ")
                 );
             };
-            if effects.contains(kind) {
+            if spec.contains(effect) {
                 bail!("effect `{name}` appears twice in `{text}` (`bwbn` already includes the four thesis effects)");
             }
-            effects = effects.with(kind);
+            spec = spec.with(effect);
         }
-        Ok(ModelSpec {
-            base: Base::Bw,
-            effects,
-        })
+        Ok(spec)
     }
 
-    /// The spec with `kind` added.
-    pub fn with(self, kind: EffectKind) -> Self {
-        ModelSpec {
-            effects: self.effects.with(kind),
-            ..self
+    /// Whether the spec holds `effect`.
+    pub fn contains(&self, effect: EffectRef) -> bool {
+        match effect {
+            EffectRef::Builtin(k) => self.effects.contains(k),
+            EffectRef::Custom(i) => self.custom & (1 << i) != 0,
         }
+    }
+
+    /// The spec with `effect` added.
+    pub fn with(self, effect: EffectRef) -> Self {
+        match effect {
+            EffectRef::Builtin(k) => ModelSpec {
+                effects: self.effects.with(k),
+                ..self
+            },
+            EffectRef::Custom(i) => ModelSpec {
+                custom: self.custom | 1 << i,
+                ..self
+            },
+        }
+    }
+
+    /// The effects in the spec, built-in first.
+    pub fn effects(&self) -> Vec<EffectRef> {
+        EffectRef::all()
+            .into_iter()
+            .filter(|e| self.contains(*e))
+            .collect()
+    }
+
+    /// The effects not in the spec: the candidates a diagnosis weighs.
+    pub fn missing(&self) -> Vec<EffectRef> {
+        EffectRef::all()
+            .into_iter()
+            .filter(|e| !self.contains(*e))
+            .collect()
+    }
+
+    /// Every parameter of the model: base, built-in effects, custom effects.
+    pub fn params(&self) -> Vec<ParamSpec> {
+        let mut v: Vec<ParamSpec> = specs(self.effects).copied().collect();
+        for (i, e) in custom::registered().iter().enumerate() {
+            if self.custom & (1 << i) != 0 {
+                v.extend_from_slice(e.params());
+            }
+        }
+        v
+    }
+
+    /// Builds the model from named values: built-in parameters through the
+    /// core's validation, custom ones through their effect's `build`. A
+    /// missing effect parameter takes its off value.
+    pub fn build(
+        &self,
+        get: impl Fn(&str) -> Option<f64>,
+    ) -> Result<(BwbnParams<f64>, Extras), ParamError> {
+        let params = BwbnParams::from_named(self.effects, &get)?;
+        let mut extras = Extras::default();
+        for (i, e) in custom::registered().iter().enumerate() {
+            if self.custom & (1 << i) == 0 {
+                continue;
+            }
+            let values: Vec<f64> = e
+                .params()
+                .iter()
+                .map(|s| get(s.name).unwrap_or(s.off as f64))
+                .collect();
+            if let Some((s, _)) = e.params().iter().zip(&values).find(|(_, v)| !v.is_finite()) {
+                return Err(ParamError {
+                    field: s.name,
+                    rule: Rule::NotFinite,
+                });
+            }
+            extras
+                .0
+                .push(CustomEffect::build(*e, params.base(), &values)?);
+        }
+        Ok((params, extras))
     }
 }
 
@@ -78,10 +199,13 @@ impl fmt::Display for ModelSpec {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         let thesis = EffectKind::THESIS.iter().all(|k| self.effects.contains(*k));
         f.write_str(if thesis { "bwbn" } else { "bw" })?;
-        for k in self.effects.iter() {
-            if !(thesis && EffectKind::THESIS.contains(&k)) {
-                write!(f, "+{}", k.name())?;
+        for e in self.effects() {
+            if let EffectRef::Builtin(k) = e {
+                if thesis && EffectKind::THESIS.contains(&k) {
+                    continue;
+                }
             }
+            write!(f, "+{}", e.name())?;
         }
         Ok(())
     }
@@ -104,16 +228,17 @@ mod tests {
         assert!(s.effects.contains(EffectKind::Pinching));
         assert_eq!(s.to_string(), "bw+strength-degradation+pinching");
         assert_eq!(ModelSpec::parse("bwbn").unwrap().to_string(), "bwbn");
+        assert_eq!(ModelSpec::parse(" bw ").unwrap(), ModelSpec::BW);
         assert_eq!(
             ModelSpec::parse("bwbn+asymmetry").unwrap().to_string(),
             "bwbn+asymmetry"
         );
-        let all4 = "bw+asymmetry+pinching+a-degradation+strength-degradation+stiffness-degradation";
+        let all = "bw+asymmetry+pinching+a-degradation+strength-degradation+stiffness-degradation";
+        assert_eq!(ModelSpec::parse(all).unwrap().to_string(), "bwbn+asymmetry");
         assert_eq!(
-            ModelSpec::parse(all4).unwrap().to_string(),
-            "bwbn+asymmetry"
+            ModelSpec::BW.missing().len(),
+            EffectKind::ALL.len() + custom::registered().len()
         );
-        assert_eq!(ModelSpec::parse(" bw ").unwrap(), ModelSpec::BW);
     }
 
     #[test]
