@@ -1,5 +1,7 @@
 //! The `hyst` command line: one module per verb.
 
+pub mod diagnose;
+pub mod discover;
 pub mod fit;
 pub mod params;
 pub mod simulate;
@@ -20,6 +22,10 @@ pub struct Cli {
 pub enum Command {
     /// List the parameters of a model.
     Params(params::ParamsArgs),
+    /// Compare a fitted model with its record, see where it fails, name what is missing.
+    Diagnose(diagnose::DiagnoseArgs),
+    /// Add missing effects one by one until nothing significant is left.
+    Discover(discover::DiscoverArgs),
     /// Fit a model to a lab record.
     Fit(fit::FitArgs),
     /// Drive a model with a displacement history; CSV displacement,force,tangent.
@@ -29,6 +35,8 @@ pub enum Command {
 /// Runs a parsed command line.
 pub fn run(cli: Cli) -> anyhow::Result<()> {
     match cli.command {
+        Command::Diagnose(a) => diagnose::run(a),
+        Command::Discover(a) => discover::run(a),
         Command::Fit(a) => fit::run(a),
         Command::Params(a) => params::run(a),
         Command::Simulate(a) => simulate::run(a),

@@ -284,22 +284,25 @@ impl SplitMix64 {
     }
 }
 
-/// Standard normal deviates by the Box-Muller transform.
+/// Standard normal deviates by the Box-Muller transform, from a seeded
+/// SplitMix64 stream (the same seed gives the same deviates everywhere).
 #[derive(Clone, Debug)]
-pub(crate) struct Normal {
+pub struct Normal {
     rng: SplitMix64,
     spare: Option<f64>,
 }
 
 impl Normal {
-    pub(crate) fn new(seed: u64) -> Self {
+    /// A stream seeded with `seed`.
+    pub fn new(seed: u64) -> Self {
         Normal {
             rng: SplitMix64::new(seed),
             spare: None,
         }
     }
 
-    pub(crate) fn sample(&mut self) -> f64 {
+    /// The next deviate.
+    pub fn sample(&mut self) -> f64 {
         if let Some(z) = self.spare.take() {
             return z;
         }

@@ -82,7 +82,7 @@ pub use branches::{Branch, Label, SegmentOptions, Segmentation};
 pub use columns::Role;
 pub use cycles::{Cycle, CycleError, Cycles, Direction, HalfCycle, Peak, Threshold};
 pub use error::{DataError, Location};
-pub use history::{HistoryError, Irregular, Protocol, Shape};
+pub use history::{HistoryError, Irregular, Normal, Protocol, Shape};
 pub use json::JsonLayout;
 pub use read::{read, read_str, ColumnRef, Format, ReadOptions};
 pub use record::{Channel, Notice, Record, Series};

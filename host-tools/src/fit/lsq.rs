@@ -58,7 +58,10 @@ fn cost(r: &[f64]) -> f64 {
 }
 
 /// Forward-difference Jacobian (backward where the forward step would leave
-/// the box). Columns are evaluated in parallel.
+/// the box or cannot be evaluated). Columns are evaluated in parallel. A
+/// variable whose neighbours on both sides cannot be evaluated (it sits at
+/// the edge of the valid region) gets a zero column: the solver then leaves
+/// it, and the identifiability analysis reports it.
 pub fn jacobian<F>(
     f: &F,
     x: &[f64],
@@ -70,23 +73,29 @@ pub fn jacobian<F>(
 where
     F: Fn(&[f64]) -> Option<Vec<f64>> + Sync,
 {
-    let cols: Vec<Option<Vec<f64>>> = (0..x.len())
+    let cols: Vec<Vec<f64>> = (0..x.len())
         .into_par_iter()
         .map(|j| {
             let range = (hi[j] - lo[j]).abs().max(1e-12);
-            let mut h = rel * range.max(x[j].abs());
-            if x[j] + h > hi[j] {
-                h = -h;
+            let step = rel * range.max(x[j].abs());
+            let order = if x[j] + step > hi[j] {
+                [-step, step]
+            } else {
+                [step, -step]
+            };
+            for h in order {
+                let mut xp = x.to_vec();
+                xp[j] += h;
+                if let Some(rp) = f(&xp) {
+                    return rp.iter().zip(r0).map(|(a, b)| (a - b) / h).collect();
+                }
             }
-            let mut xp = x.to_vec();
-            xp[j] += h;
-            let rp = f(&xp)?;
-            Some(rp.iter().zip(r0).map(|(a, b)| (a - b) / h).collect())
+            vec![0.0; r0.len()]
         })
         .collect();
     let mut jac = DMatrix::zeros(r0.len(), x.len());
     for (j, col) in cols.into_iter().enumerate() {
-        jac.set_column(j, &DVector::from_vec(col?));
+        jac.set_column(j, &DVector::from_vec(col));
     }
     Some(jac)
 }

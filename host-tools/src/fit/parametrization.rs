@@ -189,13 +189,27 @@ impl Parametrization {
                 hi: s.fit_range.1 as f64,
             })
             .collect();
+        // Degradation that lowers a function (A, nu, eta, the pinching width)
+        // is only valid below the energy where it would reach zero; fitted
+        // sets are validated up to twice the work the record puts in.
+        let work: f64 = exp
+            .displacement()
+            .windows(2)
+            .zip(exp.force().windows(2))
+            .map(|(u, f)| (0.5 * (f[0] + f[1]) * (u[1] - u[0])).abs())
+            .sum();
+        let per_mass = match exp.drive {
+            Drive::Force { mass, .. } => mass,
+            Drive::Displacement => 1.0,
+        };
+        let energy_limit = (work > 0.0).then_some(2.0 * work / per_mass);
         Ok(Parametrization {
             spec,
             free,
             fixed: fixed_map,
             scales: Scales::of(exp),
             dynamic,
-            energy_limit: None,
+            energy_limit,
         })
     }
 

@@ -302,3 +302,24 @@ pub fn finish(
         evaluations,
     })
 }
+
+/// The outcome at a given point `x` (a parameter file's values): scores and
+/// identifiability without fitting.
+pub fn evaluate_at(problem: &Problem, x: &[f64], method: &str) -> Result<Outcome> {
+    let (lo, hi) = problem.par.bounds();
+    let f = |x: &[f64]| problem.residuals(x);
+    let r =
+        f(x).ok_or_else(|| anyhow!("the given parameters cannot be simulated on this record"))?;
+    let jacobian = lsq::jacobian(&f, x, &r, &lo, &hi, Options::default().fd_step)
+        .ok_or_else(|| anyhow!("the model cannot be simulated next to the given parameters"))?;
+    let cost = r.iter().map(|v| v * v).sum();
+    let sol = lsq::Solution {
+        x: x.to_vec(),
+        residuals: r,
+        cost,
+        jacobian,
+        iterations: 0,
+        evaluations: 0,
+    };
+    finish(problem, method, sol, problem.dim() + 1)
+}

@@ -1,0 +1,207 @@
+//! `hyst diagnose DATA --model SPEC [--params FIT.json]`: lines a fitted
+//! model up with its record, says where it fails and which effect is
+//! missing.
+
+use super::fit::{load, parse_fix, Bar};
+use crate::discover::{page, weigh, Diagnosis, Suspect, WeighOptions};
+use crate::fit::problem::Problem;
+use crate::fit::run::{self, Method, Outcome, Progress};
+use crate::model::{EffectRef, ModelSpec, ParamFile};
+use crate::report::Report;
+use anyhow::{anyhow, bail, Context, Result};
+use clap::Args;
+use serde_json::{json, Value};
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+
+/// Options shared by `diagnose` and `discover`.
+#[derive(Debug, Args)]
+pub struct Common {
+    /// The lab record.
+    pub data: PathBuf,
+    /// Model spec: `bw` or `bwbn`, then `+effect` terms.
+    #[arg(long, default_value = "bw")]
+    pub model: ModelSpec,
+    /// Hold a parameter at a value, e.g. `--fix alpha=0.02`; repeatable.
+    #[arg(long = "fix", value_parser = parse_fix)]
+    pub fix: Vec<(String, f64)>,
+    /// Candidate effects to weigh, comma separated (default: every effect
+    /// not in the model).
+    #[arg(long, value_delimiter = ',')]
+    pub candidates: Vec<String>,
+    /// Mass in kg, for force-driven records.
+    #[arg(long)]
+    pub mass: Option<f64>,
+    /// Sample rate in Hz, for records without a time column.
+    #[arg(long)]
+    pub sample_rate: Option<f64>,
+    /// Write a self-contained HTML report with SVG plots.
+    #[arg(long)]
+    pub report: Option<PathBuf>,
+    /// Print one JSON object instead of text.
+    #[arg(long)]
+    pub json: bool,
+}
+
+impl Common {
+    /// The weighing options of these arguments.
+    pub fn weigh_options(&self) -> Result<WeighOptions> {
+        let candidates = if self.candidates.is_empty() {
+            None
+        } else {
+            Some(
+                self.candidates
+                    .iter()
+                    .map(|n| {
+                        EffectRef::from_name(n.trim())
+                            .ok_or_else(|| anyhow!("unknown candidate effect `{n}`"))
+                    })
+                    .collect::<Result<Vec<_>>>()?,
+            )
+        };
+        Ok(WeighOptions {
+            candidates,
+            ..WeighOptions::default()
+        })
+    }
+}
+
+/// Arguments of `hyst diagnose`.
+#[derive(Debug, Args)]
+pub struct DiagnoseArgs {
+    #[command(flatten)]
+    pub common: Common,
+    /// Use these parameters instead of fitting (a parameter or fit file).
+    #[arg(long)]
+    pub params: Option<PathBuf>,
+}
+
+/// Fits (or evaluates the given parameters of) the model on the record.
+pub fn initial_fit(
+    common: &Common,
+    params: Option<&Path>,
+    bar: &Bar,
+) -> Result<(Problem, Outcome)> {
+    let exp = load(&common.data, common.sample_rate, common.mass)?;
+    let problem = Problem::new(common.model, exp, &common.fix)?;
+    if problem.dim() == 0 {
+        bail!(
+            "every parameter of {} is fixed: nothing to fit",
+            common.model
+        );
+    }
+    let outcome = match params {
+        Some(path) => {
+            let file = ParamFile::read(path)?;
+            file.spec(Some(common.model))?;
+            file.build(common.model, problem.par.dynamic)?;
+            let values: BTreeMap<&str, f64> =
+                file.values.iter().map(|(k, v)| (k.as_str(), *v)).collect();
+            let x = problem.par.normalise(&values);
+            run::evaluate_at(&problem, &x, "given")?
+        }
+        None => run::fit(&problem, Method::Auto, &problem.par.default_start(), bar)?,
+    };
+    Ok((problem, outcome))
+}
+
+/// JSON of the suspects, most likely first.
+pub fn suspects_json(suspects: &[Suspect]) -> Value {
+    Value::Array(
+        suspects
+            .iter()
+            .map(|s| {
+                json!({
+                    "effect": s.effect.name(),
+                    "significant": s.significant,
+                    "nrmse_with": if s.nrmse_with.is_finite() { json!(s.nrmse_with) } else { Value::Null },
+                    "delta_bic": if s.delta_bic.is_finite() { json!(s.delta_bic) } else { Value::Null },
+                    "added_parameters": s.added,
+                    "n_eff": s.n_eff,
+                    "evidence": s.evidence,
+                })
+            })
+            .collect(),
+    )
+}
+
+/// The diagnosis as JSON.
+pub fn diagnosis_json(
+    problem: &Problem,
+    outcome: &Outcome,
+    d: &Diagnosis,
+    suspects: &[Suspect],
+) -> Value {
+    json!({
+        "model": problem.par.spec.to_string(),
+        "nrmse": outcome.scores.nrmse,
+        "parameters": problem.dim(),
+        "params": outcome.values,
+        "energy_error": d.energy_error,
+        "places": d.places,
+        "cycles": d.cycles,
+        "suspects": suspects_json(suspects),
+    })
+}
+
+/// The diagnosis as text.
+pub fn print_diagnosis(problem: &Problem, outcome: &Outcome, d: &Diagnosis, suspects: &[Suspect]) {
+    println!(
+        "model {}: NRMSE {:.4} with {} parameters, total energy off by {:.1}%",
+        problem.par.spec,
+        outcome.scores.nrmse,
+        problem.dim(),
+        100.0 * d.energy_error
+    );
+    println!("where it fails:");
+    for p in d.places.iter().take(4) {
+        println!("  {}", p.words);
+    }
+    println!("suspects, most likely first:");
+    for (i, s) in suspects.iter().enumerate() {
+        let mark = if s.significant {
+            "SIGNIFICANT"
+        } else {
+            "not significant"
+        };
+        println!("  {}. {:<22} {mark}", i + 1, s.effect.name());
+        println!("     {}", s.evidence);
+    }
+}
+
+/// Runs `hyst diagnose`.
+pub fn run(args: DiagnoseArgs) -> Result<()> {
+    let bar = Bar::new(&format!("diagnose {}", args.common.model), args.common.json);
+    let (problem, outcome) = initial_fit(&args.common, args.params.as_deref(), &bar)?;
+    let d = Diagnosis::new(&problem, &outcome)?;
+    bar.status("weighing the candidate effects");
+    let suspects = weigh(&problem, &outcome, &d, &args.common.weigh_options()?);
+    bar.finish();
+    if let Some(path) = &args.common.report {
+        let mut report = Report::new(&format!("Diagnosis of {}", args.common.data.display()));
+        let units = page::Units {
+            displacement: "mm",
+            force: "kN",
+        };
+        page::diagnosis_sections(
+            &mut report,
+            &problem.par.spec.to_string(),
+            outcome.scores.nrmse,
+            &d,
+            &suspects,
+            &units,
+        )?;
+        report
+            .write(path)
+            .with_context(|| format!("{}: cannot write", path.display()))?;
+    }
+    if args.common.json {
+        println!(
+            "{}",
+            serde_json::to_string_pretty(&diagnosis_json(&problem, &outcome, &d, &suspects))?
+        );
+    } else {
+        print_diagnosis(&problem, &outcome, &d, &suspects);
+    }
+    Ok(())
+}

@@ -1,0 +1,118 @@
+//! `hyst discover DATA --model SPEC`: the loop: add the strongest
+//! significant effect, refit from the previous fit, repeat until nothing
+//! significant is left; then the ladder.
+
+use super::diagnose::{diagnosis_json, initial_fit, print_diagnosis, Common};
+use super::fit::Bar;
+use crate::discover::{discover, page};
+use crate::fit::run::Progress;
+use crate::report::plots::{ladder, Rung as PlotRung};
+use anyhow::{Context, Result};
+use clap::Args;
+use serde_json::json;
+use std::path::PathBuf;
+
+/// Arguments of `hyst discover`.
+#[derive(Debug, Args)]
+pub struct DiscoverArgs {
+    #[command(flatten)]
+    pub common: Common,
+    /// Write the ladder plot (error falling) as SVG.
+    #[arg(long)]
+    pub plot: Option<PathBuf>,
+}
+
+/// Runs `hyst discover`.
+pub fn run(args: DiscoverArgs) -> Result<()> {
+    let quiet = args.common.json;
+    let bar = Bar::new(&format!("discover from {}", args.common.model), quiet);
+    let (problem, outcome) = initial_fit(&args.common, None, &bar)?;
+    let options = args.common.weigh_options()?;
+    let discovery = discover(problem, outcome, &options, |step| {
+        let top = step.suspects.iter().find(|s| s.significant);
+        bar.stage(&format!(
+            "{:<40} NRMSE {:.4}  {}",
+            step.spec.to_string(),
+            step.outcome.scores.nrmse,
+            match top {
+                Some(s) => format!(
+                    "-> adding {} (delta-BIC {:.0})",
+                    s.effect.name(),
+                    s.delta_bic
+                ),
+                None => "-> nothing significant left".to_string(),
+            }
+        ));
+    })?;
+    bar.finish();
+    let rungs: Vec<PlotRung> = discovery
+        .rungs
+        .iter()
+        .map(|r| PlotRung {
+            label: &r.model,
+            params: r.params,
+            nrmse: r.nrmse,
+            delta_bic: r.delta_bic,
+        })
+        .collect();
+    if let Some(path) = &args.plot {
+        let fig = ladder(&rungs, Some(crate::discover::suspects::SIGNIFICANT_BIC))?;
+        std::fs::write(path, fig.to_svg())
+            .with_context(|| format!("{}: cannot write", path.display()))?;
+    }
+    if let Some(path) = &args.common.report {
+        let units = page::Units {
+            displacement: "mm",
+            force: "kN",
+        };
+        let report = page::discovery_page(
+            &format!("Discovery on {}", args.common.data.display()),
+            &discovery,
+            &units,
+        )?;
+        report
+            .write(path)
+            .with_context(|| format!("{}: cannot write", path.display()))?;
+    }
+    let last = discovery.last();
+    if args.common.json {
+        let mut obj = diagnosis_json(
+            &last.problem,
+            &last.outcome,
+            &last.diagnosis,
+            &last.suspects,
+        );
+        obj["ladder"] = json!(discovery.rungs);
+        println!("{}", serde_json::to_string_pretty(&obj)?);
+    } else {
+        println!(
+            "{:<44} {:>6} {:>9} {:>9} {:>10}",
+            "model", "params", "NRMSE", "energy", "delta-BIC"
+        );
+        for r in &discovery.rungs {
+            let d = r
+                .delta_bic
+                .map_or_else(|| "-".to_string(), |d| format!("{d:.0}"));
+            println!(
+                "{:<44} {:>6} {:>9.4} {:>8.1}% {:>10}",
+                r.model,
+                r.params,
+                r.nrmse,
+                100.0 * r.energy_error,
+                d
+            );
+        }
+        let (first, final_) = (discovery.rungs[0].nrmse, last.outcome.scores.nrmse);
+        println!(
+            "error fell {:.1}x, from {first:.4} to {final_:.4}\n",
+            first / final_
+        );
+        print_diagnosis(
+            &last.problem,
+            &last.outcome,
+            &last.diagnosis,
+            &last.suspects,
+        );
+    }
+    Ok(())
+}

@@ -1,0 +1,25 @@
+//! The model-discovery loop: compare a model with measurements, see where it
+//! fails, learn which physical effect is missing, add it, watch the error
+//! fall.
+//!
+//! * [`Diagnosis`]: the fitted model lined up with its record: residuals by
+//!   cycle, half-cycle and branch class, energy and peak force per cycle, and
+//!   the places where it fails in words ([`diagnosis`]).
+//! * [`signature`]: what each missing effect leaves in the residual.
+//! * [`suspects`]: every candidate effect added and refitted, ranked by
+//!   delta-BIC, significant or not, with a sentence of evidence.
+//! * [`ladder`]: the loop, adding the strongest significant effect until none
+//!   is left.
+//! * [`synthetic`]: lab-like records with hidden effects for testing all of
+//!   it.
+
+pub mod diagnosis;
+pub mod ladder;
+pub mod page;
+pub mod signature;
+pub mod suspects;
+pub mod synthetic;
+
+pub use diagnosis::{CycleStats, Diagnosis, Place};
+pub use ladder::{discover, Discovery, Rung, Step};
+pub use suspects::{weigh, Suspect, WeighOptions};

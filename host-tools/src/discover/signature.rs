@@ -1,0 +1,231 @@
+//! The residual's signature of each physical effect: what a missing effect
+//! leaves behind in the residual of a model that lacks it, measured on the
+//! record and said in a sentence.
+//!
+//! * pinching: error concentrated near zero force on reloading branches,
+//!   where the model is stiffer than the measurement;
+//! * strength degradation: measured peak forces fall at repeated cycles of
+//!   equal amplitude and the model's do not;
+//! * stiffness degradation: measured unloading stiffness falls as energy is
+//!   dissipated and the model's does not;
+//! * asymmetry: positive and negative peaks differ in size more than the
+//!   model's do.
+//!
+//! Signatures explain; the refit with the effect added decides (see
+//! [`suspects`](super::suspects)).
+
+use super::diagnosis::Diagnosis;
+use crate::data::Branch;
+use crate::model::EffectRef;
+use hysteresis::bwbn::EffectKind;
+
+/// What the residual says about one effect.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Signature {
+    /// How strongly the residual shows the effect's pattern (0: not at all).
+    pub strength: f64,
+    /// The measurement behind it, in a sentence.
+    pub sentence: String,
+}
+
+/// The signature of `effect` in `d` (None for effects without one, such as
+/// custom effects).
+pub fn of(effect: EffectRef, d: &Diagnosis) -> Option<Signature> {
+    match effect {
+        EffectRef::Builtin(EffectKind::Pinching) => Some(pinching(d)),
+        EffectRef::Builtin(EffectKind::StrengthDegradation) => Some(strength(d)),
+        EffectRef::Builtin(EffectKind::StiffnessDegradation) => Some(stiffness(d)),
+        EffectRef::Builtin(EffectKind::ADegradation) => {
+            let (s, k) = (strength(d), stiffness(d));
+            Some(Signature {
+                strength: s.strength.max(k.strength),
+                sentence: format!("{} {}", s.sentence, k.sentence),
+            })
+        }
+        EffectRef::Builtin(EffectKind::Asymmetry) => Some(asymmetry(d)),
+        EffectRef::Custom(_) => None,
+    }
+}
+
+fn pinching(d: &Diagnosis) -> Signature {
+    let labels = d.segmentation.labels();
+    let near = |i: usize| labels[i].near_zero_force && labels[i].branch == Branch::Reloading;
+    let (mut sq, mut n) = (0.0, 0usize);
+    for (i, r) in d.residual.iter().enumerate() {
+        if near(i) {
+            sq += r * r;
+            n += 1;
+        }
+    }
+    let share = sq / d.total_sq.max(f64::MIN_POSITIVE);
+    let sample_share = n as f64 / d.residual.len().max(1) as f64;
+    let concentration = share / sample_share.max(1e-9);
+    let place = d
+        .places
+        .iter()
+        .find(|p| p.branch == "reloading" && p.near_zero_force);
+    let ratio = place.and_then(|p| p.stiffness_ratio);
+    let mut sentence = format!(
+        "{:.0}% of the error lies within 20% of zero force on reloading branches, which hold {:.0}% of the samples",
+        100.0 * share,
+        100.0 * sample_share
+    );
+    if let Some(r) = ratio {
+        sentence.push_str(&format!(
+            "; there the model is {r:.1}x as stiff as the measurement"
+        ));
+    }
+    sentence.push('.');
+    Signature {
+        strength: (concentration - 1.0).max(0.0) * ratio.map_or(1.0, |r| (r - 1.0).max(0.0)),
+        sentence,
+    }
+}
+
+/// Measured and model peak-force drops between consecutive cycles of equal
+/// amplitude (within 5%).
+fn repeated_drops(d: &Diagnosis) -> (Vec<f64>, Vec<f64>) {
+    let (mut meas, mut model) = (vec![], vec![]);
+    for w in d.cycles.windows(2) {
+        let (a, b) = (&w[0], &w[1]);
+        if a.amplitude <= 0.0 || ((b.amplitude - a.amplitude) / a.amplitude).abs() > 0.05 {
+            continue;
+        }
+        let peak = |c: &super::diagnosis::CycleStats, m: bool| {
+            let (p, n) = (c.peak_positive, c.peak_negative);
+            if m {
+                0.5 * (p.1 - n.1)
+            } else {
+                0.5 * (p.0 - n.0)
+            }
+        };
+        if peak(a, false) > 0.0 && peak(a, true) > 0.0 {
+            meas.push(1.0 - peak(b, false) / peak(a, false));
+            model.push(1.0 - peak(b, true) / peak(a, true));
+        }
+    }
+    (meas, model)
+}
+
+fn mean(v: &[f64]) -> f64 {
+    v.iter().sum::<f64>() / v.len().max(1) as f64
+}
+
+fn strength(d: &Diagnosis) -> Signature {
+    let (meas, model) = repeated_drops(d);
+    // Model peak over measured peak, last third of the cycles against the first.
+    let ratio = |c: &super::diagnosis::CycleStats| {
+        let m = 0.5 * (c.peak_positive.0 - c.peak_negative.0);
+        let p = 0.5 * (c.peak_positive.1 - c.peak_negative.1);
+        (m > 0.0).then(|| p / m)
+    };
+    let rs: Vec<f64> = d.cycles.iter().filter_map(ratio).collect();
+    let third = (rs.len() / 3).max(1);
+    let early = mean(&rs[..third.min(rs.len())]);
+    let late = mean(&rs[rs.len().saturating_sub(third)..]);
+    let mut sentence = String::new();
+    if !meas.is_empty() {
+        sentence.push_str(&format!(
+            "At repeated cycles of equal amplitude the measured peak force falls by {:.1}% a cycle, the model's by {:.1}%",
+            100.0 * mean(&meas),
+            100.0 * mean(&model)
+        ));
+    }
+    if rs.len() >= 3 {
+        if !sentence.is_empty() {
+            sentence.push_str("; ");
+        }
+        sentence.push_str(&format!(
+            "the model's peak force is {:+.0}% off the measured in the first third of the cycles and {:+.0}% in the last",
+            100.0 * (early - 1.0),
+            100.0 * (late - 1.0)
+        ));
+    }
+    if sentence.is_empty() {
+        sentence.push_str("The record has too few cycles to compare peak forces");
+    }
+    sentence.push('.');
+    let drop_gap = (mean(&meas) - mean(&model)).max(0.0);
+    Signature {
+        strength: drop_gap * 10.0 + (late - early).max(0.0),
+        sentence,
+    }
+}
+
+/// Secant stiffness of each unloading branch (from its reversal to where
+/// the force crosses zero), measured and model, with the energy dissipated
+/// before it.
+fn unloading_stiffness(d: &Diagnosis) -> Vec<(f64, f64)> {
+    let labels = d.segmentation.labels();
+    let mf = d.model_force();
+    let mut out = vec![];
+    let mut i = 0;
+    while i < labels.len() {
+        if labels[i].branch != Branch::Unloading {
+            i += 1;
+            continue;
+        }
+        let start = i;
+        while i + 1 < labels.len()
+            && labels[i + 1].branch == Branch::Unloading
+            && labels[i + 1].half_cycle == labels[start].half_cycle
+        {
+            i += 1;
+        }
+        let du = d.displacement[i] - d.displacement[start];
+        if i > start + 1 && du.abs() > 0.0 {
+            out.push(((d.force[i] - d.force[start]) / du, (mf[i] - mf[start]) / du));
+        }
+        i += 1;
+    }
+    out
+}
+
+fn stiffness(d: &Diagnosis) -> Signature {
+    let k = unloading_stiffness(d);
+    if k.len() < 4 {
+        return Signature {
+            strength: 0.0,
+            sentence: "The record has too few unloading branches to follow their stiffness.".into(),
+        };
+    }
+    let q = (k.len() / 4).max(1);
+    let early = |f: fn(&(f64, f64)) -> f64| mean(&k[..q].iter().map(f).collect::<Vec<_>>());
+    let late =
+        |f: fn(&(f64, f64)) -> f64| mean(&k[k.len() - q..].iter().map(f).collect::<Vec<_>>());
+    let (m0, m1) = (early(|p| p.0), late(|p| p.0));
+    let (p0, p1) = (early(|p| p.1), late(|p| p.1));
+    let fall_m = 1.0 - m1 / m0;
+    let fall_p = 1.0 - p1 / p0;
+    Signature {
+        strength: (fall_m - fall_p).max(0.0),
+        sentence: format!(
+            "The measured unloading stiffness goes from {m0:.3} to {m1:.3} (first to last quarter of the unloading branches), the model's from {p0:.3} to {p1:.3}."
+        ),
+    }
+}
+
+fn asymmetry(d: &Diagnosis) -> Signature {
+    let c: Vec<_> = d
+        .cycles
+        .iter()
+        .filter(|c| c.peak_positive.0 > 0.0 && c.peak_negative.0 < 0.0)
+        .collect();
+    if c.is_empty() {
+        return Signature {
+            strength: 0.0,
+            sentence: "The record does not load both directions.".into(),
+        };
+    }
+    let pm = mean(&c.iter().map(|c| c.peak_positive.0).collect::<Vec<_>>());
+    let nm = mean(&c.iter().map(|c| -c.peak_negative.0).collect::<Vec<_>>());
+    let pp = mean(&c.iter().map(|c| c.peak_positive.1).collect::<Vec<_>>());
+    let np = mean(&c.iter().map(|c| -c.peak_negative.1).collect::<Vec<_>>());
+    let (rm, rp) = (pm / nm, pp / np);
+    Signature {
+        strength: (rm.ln() - rp.ln()).abs(),
+        sentence: format!(
+            "Positive peaks average {pm:.3} and negative {nm:.3} in size (ratio {rm:.2}); the model's ratio is {rp:.2}."
+        ),
+    }
+}

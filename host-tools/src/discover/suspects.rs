@@ -1,0 +1,430 @@
+//! Which effect is missing? Every candidate effect not in the model is added
+//! and the model refitted, warm-started from the current fit (several starts
+//! for the new parameters), in parallel; then the pairs among the most
+//! promising candidates, warm-started from the better of their two single
+//! refits. Models are compared by the Bayesian information criterion,
+//!
+//! ```text
+//! BIC = n_eff ln(RSS) + k ln(n_eff)
+//! ```
+//!
+//! which rewards the error reduction and charges the parameters. A model that
+//! leaves structure in its residual has correlated residuals, and treating
+//! them as independent would overstate the evidence, so `n` is replaced by the
+//! effective sample size of the residual of the best model found,
+//! `n_eff = n (1 - rho)/(1 + rho)` with `rho` its lag-one autocorrelation
+//! (white noise: `n_eff = n`).
+//!
+//! Effects are judged inside the best model M* (lowest BIC among the current
+//! model, the singles and the pairs): an effect in M* is significant when
+//! removing it raises the BIC by more than 10 ("very strong" evidence on the
+//! usual scale of Kass and Raftery); an effect outside M* is not. Looking at
+//! pairs matters: when two effects are missing, a flexible single effect
+//! (pinching, six parameters) can mimic both better than either alone, and a
+//! greedy one-at-a-time choice would name it. A record with nothing missing
+//! leaves M* = the current model: the noise gains about one unit of
+//! chi-square per added parameter, far less than the `k ln n` charge, and no
+//! suspect is significant.
+//!
+//! Redundant initial values are held at 1 when their effect is added
+//! (`nu0`, `eta0`, `A0`): they only rescale `beta`, `gamma` and `k0`, which
+//! the data already fix, so freeing them would add parameters the data
+//! cannot determine.
+
+use super::diagnosis::Diagnosis;
+use super::signature::{self, Signature};
+use crate::fit::lsq::{self, Options};
+use crate::fit::problem::Problem;
+use crate::fit::run::{self, Outcome};
+use crate::model::EffectRef;
+use anyhow::Result;
+use rayon::prelude::*;
+use std::collections::BTreeMap;
+
+/// `delta_BIC` below which a suspect is significant.
+pub const SIGNIFICANT_BIC: f64 = -10.0;
+
+/// A candidate effect with its evidence.
+#[derive(Clone, Debug)]
+pub struct Suspect {
+    /// The effect.
+    pub effect: EffectRef,
+    /// `delta_BIC < -10`.
+    pub significant: bool,
+    /// NRMSE of the current model.
+    pub nrmse: f64,
+    /// NRMSE after adding the effect and refitting (infinite if the refit
+    /// failed).
+    pub nrmse_with: f64,
+    /// BIC change from adding the effect (negative: better).
+    pub delta_bic: f64,
+    /// Effective sample size used.
+    pub n_eff: f64,
+    /// Parameters the effect adds.
+    pub added: usize,
+    /// What the residual shows, if the effect has a signature.
+    pub signature: Option<Signature>,
+    /// One sentence of evidence.
+    pub evidence: String,
+    /// The refitted model (problem and fit), for taking the next step.
+    pub refit: Option<(Problem, Outcome)>,
+}
+
+/// Settings of [`weigh`].
+#[derive(Clone, Debug)]
+pub struct WeighOptions {
+    /// Candidate effects (default: every effect not in the model).
+    pub candidates: Option<Vec<EffectRef>>,
+    /// Starting points for the new parameters per candidate.
+    pub starts: usize,
+}
+
+impl Default for WeighOptions {
+    fn default() -> Self {
+        WeighOptions {
+            candidates: None,
+            starts: 4,
+        }
+    }
+}
+
+/// Lag-one autocorrelation.
+fn lag1(r: &[f64]) -> f64 {
+    let ss: f64 = r.iter().map(|v| v * v).sum();
+    if ss <= 0.0 {
+        return 0.0;
+    }
+    r.windows(2).map(|w| w[0] * w[1]).sum::<f64>() / ss
+}
+
+/// Initial values held at 1 when their effect is added.
+const CANONICAL: [(&str, f64); 3] = [("nu0", 1.0), ("eta0", 1.0), ("A0", 1.0)];
+
+/// Refits `problem`'s model with `effect` added, from the fit `outcome`.
+pub fn refit(
+    problem: &Problem,
+    outcome: &Outcome,
+    effect: EffectRef,
+    starts: usize,
+) -> Result<(Problem, Outcome)> {
+    let spec = problem.par.spec.with(effect);
+    let mut fixed: Vec<(String, f64)> = problem
+        .par
+        .fixed
+        .iter()
+        .map(|(k, v)| (k.to_string(), *v))
+        .collect();
+    for p in effect.params() {
+        if let Some((_, v)) = CANONICAL.iter().find(|(n, _)| *n == p.name) {
+            fixed.push((p.name.to_string(), *v));
+        }
+    }
+    let richer = Problem::new(spec, problem.exp.clone(), &fixed)?;
+    let warm: BTreeMap<&str, f64> = outcome.values.iter().map(|(k, v)| (*k, *v)).collect();
+    let x0 = richer.par.normalise(&warm);
+    let (lo, hi) = richer.par.bounds();
+    let new: Vec<usize> = richer
+        .par
+        .free
+        .iter()
+        .enumerate()
+        .filter(|(_, f)| effect.params().iter().any(|p| p.name == f.spec.name))
+        .map(|(i, _)| i)
+        .collect();
+    // Warm start, then draws of the new parameters in the middle half of
+    // their ranges (the others stay warm).
+    let draws = run::starts(&x0, &lo, &hi, starts.max(1), 0x5eed + new.len() as u64);
+    let starts: Vec<Vec<f64>> = draws
+        .into_iter()
+        .map(|d| {
+            let mut x = x0.clone();
+            for &i in &new {
+                x[i] = d[i];
+            }
+            x
+        })
+        .collect();
+    let f = |x: &[f64]| richer.residuals(x);
+    let evals = std::sync::atomic::AtomicUsize::new(0);
+    let best = starts
+        .par_iter()
+        .filter_map(|s| {
+            let sol = lsq::minimize(&f, s, &lo, &hi, Options::default())?;
+            evals.fetch_add(sol.evaluations, std::sync::atomic::Ordering::Relaxed);
+            Some(sol)
+        })
+        .min_by(|a, b| a.cost.total_cmp(&b.cost))
+        .ok_or_else(|| anyhow::anyhow!("{spec} cannot be simulated from the warm start"))?;
+    let out = run::finish(&richer, "lsq (warm)", best, evals.into_inner())?;
+    Ok((richer, out))
+}
+
+/// Effective sample size of a residual: `n (1 - rho)/(1 + rho)`, at least
+/// `k + 2`.
+pub fn effective_n(r: &[f64], k: usize) -> f64 {
+    let n = r.len() as f64;
+    let rho = lag1(r).clamp(0.0, 0.999);
+    (n * (1.0 - rho) / (1.0 + rho)).clamp((k + 2) as f64, n.max((k + 2) as f64))
+}
+
+/// BIC of a fit with `cost` (proportional to RSS) and `k` parameters.
+pub fn bic(cost: f64, k: usize, n_eff: f64) -> f64 {
+    n_eff * cost.max(f64::MIN_POSITIVE).ln() + k as f64 * n_eff.ln()
+}
+
+/// One fitted model of the comparison.
+struct Fitted {
+    effects: Vec<EffectRef>,
+    cost: f64,
+    k: usize,
+    residual: Vec<f64>,
+    fit: Option<(Problem, Outcome)>,
+}
+
+fn fitted(effects: Vec<EffectRef>, problem: Problem, outcome: Outcome) -> Fitted {
+    let residual: Vec<f64> = problem
+        .predict(&outcome.x)
+        .map(|p| {
+            p.output
+                .iter()
+                .zip(&problem.exp.output)
+                .map(|(a, b)| a - b)
+                .collect()
+        })
+        .unwrap_or_default();
+    Fitted {
+        effects,
+        cost: outcome.scores.nrmse.powi(2),
+        k: problem.dim(),
+        residual,
+        fit: Some((problem, outcome)),
+    }
+}
+
+/// How a suspect's delta-BIC was measured.
+enum Relation {
+    /// It is in the best model: the cost of removing it.
+    InBest,
+    /// The best model with it added was fitted: the change of adding it.
+    AddedToBest,
+    /// Only its single refit exists: its change of the current model (the
+    /// best model's own change given alongside).
+    Alone(f64),
+    /// It could not be fitted.
+    Unfitted,
+}
+
+/// How many of the best singles are paired (all of the default candidates).
+const PAIRED: usize = 5;
+
+/// The candidates weighed by default: every effect not in the model except
+/// A-degradation. Lowering A lowers both the hysteretic stiffness near z = 0
+/// and Zu = (A/(nu(beta+gamma)))^(1/n), so it is a blend of stiffness and
+/// strength degradation: as a suspect it would compete with both and name
+/// neither; it stays available through `--candidates`.
+pub fn default_candidates(spec: crate::model::ModelSpec) -> Vec<EffectRef> {
+    spec.missing()
+        .into_iter()
+        .filter(|e| *e != EffectRef::Builtin(hysteresis::bwbn::EffectKind::ADegradation))
+        .collect()
+}
+
+/// Weighs every candidate effect for the fit `outcome` of `problem`.
+pub fn weigh(
+    problem: &Problem,
+    outcome: &Outcome,
+    diagnosis: &Diagnosis,
+    options: &WeighOptions,
+) -> Vec<Suspect> {
+    let candidates = options
+        .candidates
+        .clone()
+        .unwrap_or_else(|| default_candidates(problem.par.spec));
+    let base = fitted(vec![], problem.clone(), outcome.clone());
+    // Singles.
+    let singles: Vec<Fitted> = candidates
+        .par_iter()
+        .map(|&e| match refit(problem, outcome, e, options.starts) {
+            Ok((p, o)) => fitted(vec![e], p, o),
+            Err(_) => Fitted {
+                effects: vec![e],
+                cost: f64::INFINITY,
+                k: 0,
+                residual: vec![],
+                fit: None,
+            },
+        })
+        .collect();
+    // Pairs among the best singles, from the better single of each pair.
+    let mut order: Vec<usize> = (0..singles.len())
+        .filter(|&i| singles[i].fit.is_some())
+        .collect();
+    order.sort_by(|&a, &b| singles[a].cost.total_cmp(&singles[b].cost));
+    order.truncate(PAIRED);
+    let mut pairs_todo = vec![];
+    for (i, &a) in order.iter().enumerate() {
+        for &b in &order[i + 1..] {
+            pairs_todo.push((a, b));
+        }
+    }
+    let pairs: Vec<Fitted> = pairs_todo
+        .par_iter()
+        .filter_map(|&(a, b)| {
+            let (from, other) = (&singles[a], singles[b].effects[0]);
+            let (p, o) = from.fit.as_ref()?;
+            let (p2, o2) = refit(p, o, other, 2).ok()?;
+            Some(fitted(vec![from.effects[0], other], p2, o2))
+        })
+        .collect();
+    let all: Vec<&Fitted> = std::iter::once(&base)
+        .chain(&singles)
+        .chain(&pairs)
+        .filter(|f| f.fit.is_some())
+        .collect();
+    // The best model and the effective sample size of its residual, to a
+    // fixed point (the choice and n_eff depend on each other).
+    let mut best = all
+        .iter()
+        .min_by(|a, b| a.cost.total_cmp(&b.cost))
+        .copied()
+        .unwrap_or(&base);
+    let mut n_eff = effective_n(&best.residual, best.k);
+    for _ in 0..4 {
+        let next = all
+            .iter()
+            .min_by(|a, b| bic(a.cost, a.k, n_eff).total_cmp(&bic(b.cost, b.k, n_eff)))
+            .copied()
+            .unwrap_or(&base);
+        let n_next = effective_n(&next.residual, next.k);
+        let stable = std::ptr::eq(next, best);
+        best = next;
+        n_eff = n_next;
+        if stable {
+            break;
+        }
+    }
+    let find = |effects: &[EffectRef]| -> Option<&Fitted> {
+        all.iter()
+            .find(|f| {
+                f.effects.len() == effects.len() && effects.iter().all(|e| f.effects.contains(e))
+            })
+            .copied()
+    };
+    let best_bic = bic(best.cost, best.k, n_eff);
+    let best_name = if best.effects.is_empty() {
+        "the current model".to_string()
+    } else {
+        let names: Vec<&str> = best.effects.iter().map(|e| e.name()).collect();
+        format!("the model with {}", names.join(" and "))
+    };
+    let mut suspects: Vec<Suspect> = singles
+        .iter()
+        .map(|single| {
+            let effect = single.effects[0];
+            let signature = signature::of(effect, diagnosis);
+            let in_best = best.effects.contains(&effect);
+            // In M*: the BIC cost of removing it. Outside: the change of
+            // adding it to M* where that model was fitted, else to the
+            // current model.
+            // In M*: the BIC cost of removing it. Outside: the change of
+            // adding it to M* where that model was fitted; else its own
+            // change of the current model, which M* beats.
+            let mut with = best.effects.clone();
+            with.push(effect);
+            let (delta, relation) = if in_best {
+                let without: Vec<EffectRef> = best.effects.iter().copied().filter(|e| *e != effect).collect();
+                let d = find(&without).map_or(f64::NEG_INFINITY, |w| best_bic - bic(w.cost, w.k, n_eff));
+                (d, Relation::InBest)
+            } else if let Some(w) = find(&with) {
+                (bic(w.cost, w.k, n_eff) - best_bic, Relation::AddedToBest)
+            } else if single.fit.is_some() {
+                let d = bic(single.cost, single.k, n_eff) - bic(base.cost, base.k, n_eff);
+                (d, Relation::Alone(best_bic - bic(base.cost, base.k, n_eff)))
+            } else {
+                (f64::INFINITY, Relation::Unfitted)
+            };
+            let significant = in_best && delta < SIGNIFICANT_BIC;
+            let nrmse_with = single.cost.sqrt();
+            let added = single.k.saturating_sub(base.k);
+            let mut evidence = if single.fit.is_some() {
+                format!(
+                    "Adding {} ({} parameter{}) takes the NRMSE from {:.4} to {:.4}. ",
+                    effect.name(),
+                    added,
+                    if added == 1 { "" } else { "s" },
+                    outcome.scores.nrmse,
+                    nrmse_with
+                )
+            } else {
+                format!("The model with {} could not be fitted. ", effect.name())
+            };
+            let best_nrmse = best.cost.sqrt();
+            match relation {
+                Relation::InBest => evidence.push_str(&format!(
+                    "It belongs to the best model found, {best_name} (NRMSE {best_nrmse:.4}), whose BIC rises by {:.0} without it{}.",
+                    -delta,
+                    if significant { ": significant" } else { ": not significant" }
+                )),
+                Relation::AddedToBest => evidence.push_str(&format!(
+                    "The best model found is {best_name} (NRMSE {best_nrmse:.4}); adding {} to it changes the BIC by {delta:+.0}: not significant.",
+                    effect.name()
+                )),
+                Relation::Alone(best_gain) => evidence.push_str(&format!(
+                    "On its own it changes the BIC by {delta:+.0}; the best model found, {best_name} (NRMSE {best_nrmse:.4}), changes it by {best_gain:+.0} without it: not significant."
+                )),
+                Relation::Unfitted => evidence.push_str("Not significant."),
+            }
+            if let Some(s) = &signature {
+                evidence.push(' ');
+                evidence.push_str(&s.sentence);
+            }
+            Suspect {
+                effect,
+                significant,
+                nrmse: outcome.scores.nrmse,
+                nrmse_with,
+                delta_bic: delta,
+                n_eff,
+                added,
+                signature,
+                evidence,
+                refit: single.fit.clone(),
+            }
+        })
+        .collect();
+    suspects.sort_by(|a, b| {
+        b.significant
+            .cmp(&a.significant)
+            .then(a.delta_bic.total_cmp(&b.delta_bic))
+    });
+    suspects
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn bic_charges_parameters_and_discounts_correlated_residuals() {
+        let white: Vec<f64> = (0..1000)
+            .map(|i| if i % 2 == 0 { 1.0 } else { -1.0 } * 0.1)
+            .collect();
+        let n_eff = effective_n(&white, 11);
+        assert_eq!(
+            n_eff, 1000.0,
+            "alternating residuals have negative rho, clamped to 0"
+        );
+        // Fitting noise only: RSS falls by about one chi-square unit per
+        // added parameter; the charge dominates.
+        let d = bic(1.0 - 6.0 / 1000.0, 11, n_eff) - bic(1.0, 5, n_eff);
+        assert!(d > 30.0, "{d}");
+        // A large fall is strong evidence.
+        let d = bic(0.05, 11, n_eff) - bic(1.0, 5, n_eff);
+        assert!(d < -2000.0, "{d}");
+        // Strongly correlated residuals count for far fewer samples.
+        let smooth: Vec<f64> = (0..1000).map(|i| (i as f64 * 0.01).sin()).collect();
+        let n_corr = effective_n(&smooth, 11);
+        assert!(n_corr < 15.0, "{n_corr}");
+        assert!(bic(0.05, 11, n_corr) - bic(1.0, 5, n_corr) > d);
+    }
+}
