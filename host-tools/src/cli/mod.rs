@@ -4,6 +4,7 @@ pub mod diagnose;
 pub mod discover;
 pub mod fit;
 pub mod params;
+pub mod sensitivity;
 pub mod simulate;
 
 use clap::{Parser, Subcommand};
@@ -28,6 +29,8 @@ pub enum Command {
     Discover(discover::DiscoverArgs),
     /// Fit a model to a lab record.
     Fit(fit::FitArgs),
+    /// One-at-a-time sensitivity of a fitted model (thesis Table 3.5).
+    Sensitivity(sensitivity::SensitivityArgs),
     /// Drive a model with a displacement history; CSV displacement,force,tangent.
     Simulate(simulate::SimulateArgs),
 }
@@ -39,6 +42,7 @@ pub fn run(cli: Cli) -> anyhow::Result<()> {
         Command::Discover(a) => discover::run(a),
         Command::Fit(a) => fit::run(a),
         Command::Params(a) => params::run(a),
+        Command::Sensitivity(a) => sensitivity::run(a),
         Command::Simulate(a) => simulate::run(a),
     }
 }

@@ -3,7 +3,6 @@
 
 use crate::model::ModelSpec;
 use clap::Args;
-use hysteresis::bwbn::specs;
 
 /// Arguments of `hyst params`.
 #[derive(Debug, Args)]
@@ -19,7 +18,7 @@ pub fn run(args: ParamsArgs) -> anyhow::Result<()> {
         "{:<10} {:<6} {:<5} {:>6}  description",
         "name", "symbol", "eq.", "off"
     );
-    for s in specs(args.model.effects) {
+    for s in args.model.params() {
         println!(
             "{:<10} {:<6} {:<5} {:>6}  {}",
             s.name, s.symbol, s.equation, s.off, s.doc

@@ -185,7 +185,7 @@ fn cycle_stats(
 /// Sum of |ΔF| of the model over the measured, over the contiguous runs of
 /// `in_place` samples: the ratio of secant stiffnesses along those branches
 /// (both forces at the same measured displacements).
-fn stiffness_ratio(in_place: &[bool], f: &[f64], mf: &[f64]) -> Option<f64> {
+pub(crate) fn stiffness_ratio(in_place: &[bool], f: &[f64], mf: &[f64]) -> Option<f64> {
     let (mut dm, mut dp) = (0.0, 0.0);
     let mut i = 0;
     while i < in_place.len() {

@@ -212,6 +212,8 @@ enum Relation {
     Alone(f64),
     /// It could not be fitted.
     Unfitted,
+    /// Its signature is absent from the residual.
+    NoSignature,
 }
 
 /// How many of the best singles are paired (all of the default candidates).
@@ -276,10 +278,19 @@ pub fn weigh(
             Some(fitted(vec![from.effects[0], other], p2, o2))
         })
         .collect();
+    // Effects whose signature is absent (pinching without its pattern) do
+    // not enter the comparison.
+    let signatures: Vec<(EffectRef, Option<Signature>)> =
+        candidates.iter().map(|&e| (e, signature::of(e, diagnosis))).collect();
+    let gated = |e: &EffectRef| {
+        signatures
+            .iter()
+            .any(|(x, s)| x == e && s.as_ref().is_some_and(|s| !s.supports))
+    };
     let all: Vec<&Fitted> = std::iter::once(&base)
         .chain(&singles)
         .chain(&pairs)
-        .filter(|f| f.fit.is_some())
+        .filter(|f| f.fit.is_some() && !f.effects.iter().any(gated))
         .collect();
     // The best model and the effective sample size of its residual, to a
     // fixed point (the choice and n_eff depend on each other).
@@ -321,7 +332,7 @@ pub fn weigh(
         .iter()
         .map(|single| {
             let effect = single.effects[0];
-            let signature = signature::of(effect, diagnosis);
+            let signature = signatures.iter().find(|(e, _)| *e == effect).and_then(|(_, s)| s.clone());
             let in_best = best.effects.contains(&effect);
             // In M*: the BIC cost of removing it. Outside: the change of
             // adding it to M* where that model was fitted, else to the
@@ -331,7 +342,14 @@ pub fn weigh(
             // change of the current model, which M* beats.
             let mut with = best.effects.clone();
             with.push(effect);
-            let (delta, relation) = if in_best {
+            let (delta, relation) = if gated(&effect) {
+                let d = if single.fit.is_some() {
+                    bic(single.cost, single.k, n_eff) - bic(base.cost, base.k, n_eff)
+                } else {
+                    f64::INFINITY
+                };
+                (d, Relation::NoSignature)
+            } else if in_best {
                 let without: Vec<EffectRef> = best.effects.iter().copied().filter(|e| *e != effect).collect();
                 let d = find(&without).map_or(f64::NEG_INFINITY, |w| best_bic - bic(w.cost, w.k, n_eff));
                 (d, Relation::InBest)
@@ -373,6 +391,9 @@ pub fn weigh(
                     "On its own it changes the BIC by {delta:+.0}; the best model found, {best_name} (NRMSE {best_nrmse:.4}), changes it by {best_gain:+.0} without it: not significant."
                 )),
                 Relation::Unfitted => evidence.push_str("Not significant."),
+                Relation::NoSignature => evidence.push_str(&format!(
+                    "On its own it changes the BIC by {delta:+.0}, but the residual does not show its pattern: not significant."
+                )),
             }
             if let Some(s) = &signature {
                 evidence.push(' ');

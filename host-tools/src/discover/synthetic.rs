@@ -26,7 +26,11 @@ pub enum Path {
     Irregular(u64),
 }
 
-/// Measurement noise.
+/// Measurement noise. The displacement noise is given against the yield
+/// displacement Zu = 1 mm: the elastic stiffness turns it into force noise
+/// (k0 = 20 kN/mm against a strength of about 19 kN), so 1% of Zu is already
+/// 1% of the strength, as in the shared synthetic records (0.2 mm on a yield
+/// displacement of about 17 mm).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Noise {
     /// Standard deviation of the displacement noise, mm.
@@ -36,14 +40,14 @@ pub struct Noise {
 }
 
 impl Noise {
-    /// 0.02 mm and 0.5% of peak.
+    /// 0.5% of Zu and 0.5% of peak force.
     pub const LOW: Noise = Noise {
-        displacement: 0.02,
+        displacement: 0.005,
         force: 0.005,
     };
-    /// 0.1 mm and 2% of peak.
+    /// 2% of Zu and 2% of peak force.
     pub const HIGH: Noise = Noise {
-        displacement: 0.1,
+        displacement: 0.02,
         force: 0.02,
     };
 }
@@ -68,8 +72,8 @@ pub fn hidden_values(kind: EffectKind) -> &'static [(&'static str, f64)] {
             ("delta_psi", 0.0),
             ("lambda", 0.5),
         ],
-        EffectKind::StrengthDegradation => &[("delta_nu", 4e-4)],
-        EffectKind::StiffnessDegradation => &[("delta_eta", 5e-4)],
+        EffectKind::StrengthDegradation => &[("delta_nu", 8e-4)],
+        EffectKind::StiffnessDegradation => &[("delta_eta", 1e-3)],
         EffectKind::ADegradation => &[("delta_A", 1.5e-4)],
         EffectKind::Asymmetry => &[("asym_strength", 0.3)],
     }

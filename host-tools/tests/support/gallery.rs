@@ -328,7 +328,7 @@ pub fn figures() -> Vec<(&'static str, Figure, String)> {
         .collect();
     out.push((
         "sensitivity",
-        sensitivity(&change, &signals).unwrap(),
+        sensitivity(&change, "RMS error", &signals).unwrap(),
         "RMS force error when one parameter moves from −50% to +50% (cf. thesis Fig. 3.7).".into(),
     ));
 

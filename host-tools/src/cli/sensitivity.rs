@@ -1,0 +1,69 @@
+//! `hyst sensitivity DATA --params FIT.json`: one-at-a-time sensitivity of
+//! the fitted model (thesis section 3.5.3, Table 3.5, Fig. 3.7).
+
+use super::fit::load;
+use crate::fit::problem::Problem;
+use crate::fit::sensitivity;
+use crate::model::{ModelSpec, ParamFile};
+use crate::report::plots::{sensitivity as plot, Signal};
+use anyhow::{Context, Result};
+use clap::Args;
+use std::collections::BTreeMap;
+use std::path::PathBuf;
+
+/// Arguments of `hyst sensitivity`.
+#[derive(Debug, Args)]
+pub struct SensitivityArgs {
+    /// The record the model is run on (its input drives the model).
+    pub data: PathBuf,
+    /// The parameter or fit file.
+    #[arg(long)]
+    pub params: PathBuf,
+    /// Model spec; defaults to the parameter file's.
+    #[arg(long)]
+    pub model: Option<ModelSpec>,
+    /// Mass in kg, for force-driven records.
+    #[arg(long)]
+    pub mass: Option<f64>,
+    /// Sample rate in Hz, for records without a time column.
+    #[arg(long)]
+    pub sample_rate: Option<f64>,
+    /// Changes from -50% to +50% in this many steps.
+    #[arg(long, default_value_t = 11)]
+    pub levels: usize,
+    /// Write the curves as SVG (thesis Fig. 3.7).
+    #[arg(long)]
+    pub plot: Option<PathBuf>,
+    /// Print JSON.
+    #[arg(long)]
+    pub json: bool,
+}
+
+/// Runs `hyst sensitivity`.
+pub fn run(args: SensitivityArgs) -> Result<()> {
+    let file = ParamFile::read(&args.params)?;
+    let spec = file.spec(args.model)?;
+    let exp = load(&args.data, args.sample_rate, args.mass)?;
+    let problem = Problem::new(spec, exp, &[])?;
+    file.build(spec, problem.par.dynamic)?;
+    let values: BTreeMap<&str, f64> = file.values.iter().map(|(k, v)| (k.as_str(), *v)).collect();
+    let x = problem.par.normalise(&values);
+    let sweeps = sensitivity::analyse(&problem, &x, args.levels.max(3));
+    if let Some(path) = &args.plot {
+        let change: Vec<f64> = sweeps.first().map(|s| s.changes.iter().map(|c| 100.0 * c).collect()).unwrap_or_default();
+        let curves: Vec<Signal> = sweeps.iter().map(|s| Signal::model(&s.name, "", &s.errors)).collect();
+        let fig = plot(&change, "e, eq. 3.24", &curves)?;
+        std::fs::write(path, fig.to_svg()).with_context(|| format!("{}: cannot write", path.display()))?;
+    }
+    let mut ranked: Vec<_> = sweeps.iter().collect();
+    ranked.sort_by_key(|s| s.rank);
+    if args.json {
+        println!("{}", serde_json::to_string_pretty(&ranked)?);
+    } else {
+        println!("{:<12} {:>14} {:>18} {:>5}", "parameter", "value", "max e (eq. 3.25)", "rank");
+        for s in ranked {
+            println!("{:<12} {:>14.6e} {:>18.6e} {:>5}", s.name, s.nominal, s.max_error, s.rank);
+        }
+    }
+    Ok(())
+}
