@@ -1,8 +1,10 @@
 //! The `hyst` command line: one module per verb.
 
+pub mod export;
 pub mod fit;
 pub mod params;
 pub mod simulate;
+pub mod table;
 
 use clap::{Parser, Subcommand};
 
@@ -24,6 +26,10 @@ pub enum Command {
     Fit(fit::FitArgs),
     /// Drive a model with a displacement history; CSV displacement,force,tangent.
     Simulate(simulate::SimulateArgs),
+    /// Write the parameter table for the device (binary, Rust or C).
+    Export(export::ExportArgs),
+    /// Work with binary parameter tables (`check`).
+    Table(table::TableArgs),
 }
 
 /// Runs a parsed command line.
@@ -32,5 +38,7 @@ pub fn run(cli: Cli) -> anyhow::Result<()> {
         Command::Fit(a) => fit::run(a),
         Command::Params(a) => params::run(a),
         Command::Simulate(a) => simulate::run(a),
+        Command::Export(a) => export::run(a),
+        Command::Table(a) => table::run(a),
     }
 }
