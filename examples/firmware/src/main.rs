@@ -79,8 +79,11 @@ fn main() -> ! {
         defmt::error!("{} elements for {} channels", table.len(), CHANNELS.len());
         exit(1)
     }
-    let mut elements: heapless::Vec<Bwbn<f32>, MAX_ELEMENTS> =
-        table.iter().map(Bwbn::new).collect();
+    let mut elements: heapless::Vec<Bwbn<f32>, MAX_ELEMENTS> = heapless::Vec::new();
+    for p in table.iter() {
+        // The length was checked above: no push fails.
+        let _ = elements.push(Bwbn::new(p));
+    }
     defmt::info!(
         "{} elements of {} bytes of state each",
         elements.len(),
@@ -95,7 +98,11 @@ fn main() -> ! {
             defmt::error!("tick {}: ADC: {}", k, e);
             exit(1)
         }
-        for (i, (el, &code)) in elements.iter_mut().zip(&codes).enumerate() {
+        let columns = elements
+            .iter_mut()
+            .zip(&codes)
+            .zip(peak.iter_mut().zip(&mut error));
+        for (i, ((el, &code), (peak, error))) in columns.enumerate() {
             let u = displacement(code);
             let force = match el.set_trial(u) {
                 Ok(r) => r.force,
@@ -106,13 +113,15 @@ fn main() -> ! {
             };
             el.commit();
             let want = reference(k, i);
-            peak[i] = peak[i].max(want.abs());
-            error[i] = error[i].max((force - want).abs());
+            *peak = peak.max(want.abs());
+            *error = error.max((force - want).abs());
         }
         // Every block of three cycles, at the positive peak of its second.
         if k % 600 == 250 {
-            let f = elements.iter().map(|e| e.response().force);
-            let f: heapless::Vec<f32, MAX_ELEMENTS> = f.collect();
+            let mut f = [0f32; CHANNELS.len()];
+            for (f, e) in f.iter_mut().zip(&elements) {
+                *f = e.response().force;
+            }
             defmt::info!(
                 "t = {} ms: u0 = {} mm, forces {} kN",
                 k,
@@ -124,14 +133,14 @@ fn main() -> ! {
     }
 
     let mut failed = 0;
-    for i in 0..elements.len() {
-        let rel = error[i] / peak[i];
+    for (i, (peak, error)) in peak.iter().zip(&error).enumerate() {
+        let rel = error / peak;
         let ok = rel <= F32_BOUND;
         defmt::println!(
             "element {}: peak {} kN, max |F - F_host| {} kN = {} of peak (bound {}) ... {=str}",
             i,
-            peak[i],
-            error[i],
+            peak,
+            error,
             rel,
             F32_BOUND,
             if ok { "ok" } else { "FAILED" }

@@ -73,27 +73,29 @@ pub struct ReplayAdc<'a> {
 
 impl<'a> ReplayAdc<'a> {
     /// A replay of `record` with `channels` channels at one sample per
-    /// `period_ns`.
+    /// `period_ns` (a period of 0 holds the first sample).
     pub fn new(clock: &'a ReplayClock, record: &'a [u8], channels: usize, period_ns: u32) -> Self {
         ReplayAdc {
             clock,
             record,
             channels,
-            period_ns: period_ns.max(1) as u64,
+            period_ns: period_ns as u64,
             selected: 0,
         }
     }
 
     /// Samples in the record.
     pub fn samples(&self) -> usize {
-        self.record.len() / (2 * self.channels.max(1))
+        (self.record.len() / 2)
+            .checked_div(self.channels)
+            .unwrap_or(0)
     }
 
     /// The code of `channel` at the clock's current sample (mid-scale for a
     /// channel the record does not have).
     fn code(&self, channel: u8) -> u16 {
         let last = self.samples().saturating_sub(1);
-        let k = ((self.clock.now_ns() / self.period_ns) as usize).min(last);
+        let k = (self.clock.now_ns().checked_div(self.period_ns).unwrap_or(0) as usize).min(last);
         let at = 2 * (k * self.channels + channel as usize);
         match self.record.get(at..at + 2) {
             Some(&[lo, hi]) if (channel as usize) < self.channels => u16::from_le_bytes([lo, hi]),
