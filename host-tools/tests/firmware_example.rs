@@ -45,17 +45,16 @@ fn export_rust(files: &[String]) -> Vec<u8> {
         .args(["--format", "rust", "--scalar", "f32"])
         .output()
         .unwrap();
-    assert!(
-        o.status.success(),
-        "{}",
-        String::from_utf8_lossy(&o.stderr)
-    );
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     o.stdout
 }
 
 fn code(u_mm: f64) -> u16 {
     let c = (u_mm / FULL_SCALE_MM * 32768.0).round() + 32768.0;
-    assert!((0.0..=65535.0).contains(&c), "{u_mm} mm is outside the ADC's range");
+    assert!(
+        (0.0..=65535.0).contains(&c),
+        "{u_mm} mm is outside the ADC's range"
+    );
     c as u16
 }
 
