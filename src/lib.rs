@@ -6,6 +6,8 @@
 //!   force-driven oscillator.
 //! * [`phm`]: the polygonal hysteresis model of RC columns under cyclic
 //!   torsion (thesis ch. 5), a twist-driven [`Element`] with the same API.
+//! * [`table`]: parameter tables from the host to the device: a versioned,
+//!   CRC-checked byte format and its verifying, zero-copy loader.
 //! * [`scalar`]: the arithmetic the models are generic over: `f64` on the
 //!   host, `f32` on Cortex-M4F, [`Fixed`] (Q15.16) on FPU-less parts.
 //!
@@ -29,6 +31,7 @@ pub mod phm;
 pub mod scalar;
 #[cfg(any(test, feature = "selftest"))]
 pub mod selftest;
+pub mod table;
 
 pub use element::{Element, Response, StepError};
 pub use scalar::{Fixed, Scalar};

@@ -34,7 +34,9 @@ const TRUTH: [(&str, f64); 7] = [
 fn slipping_column() -> Experiment {
     register();
     let spec = ModelSpec::parse("bw+slip").unwrap();
-    let (params, extras) = spec.build(|n| TRUTH.iter().find(|(k, _)| *k == n).map(|(_, v)| *v)).unwrap();
+    let (params, extras) = spec
+        .build(|n| TRUTH.iter().find(|(k, _)| *k == n).map(|(_, v)| *v))
+        .unwrap();
     let u = hyst::discover::synthetic::path(hyst::discover::synthetic::Path::StepWise);
     let mut el = Bwbn::with_extra(params, &extras, hysteresis::bwbn::Control::default_for());
     let mut gauss = hyst::data::Normal::new(5);
@@ -43,7 +45,11 @@ fn slipping_column() -> Experiment {
         f.push(el.set_trial(ui).unwrap().force + 0.1 * gauss.sample());
         el.commit();
     }
-    Experiment { input: u, output: f, drive: Drive::Displacement }
+    Experiment {
+        input: u,
+        output: f,
+        drive: Drive::Displacement,
+    }
 }
 
 #[test]
@@ -57,9 +63,15 @@ fn specs_and_parameter_files_know_the_registered_effect() {
         r#"{"model": "bw+slip", "k0": 20, "alpha": 0.03, "n": 1.5, "beta": 0.6, "gamma": 0.4, "slip_depth": 1.5}"#,
     )
     .unwrap();
-    let err = file.build(file.spec(None).unwrap(), false).unwrap_err().to_string();
+    let err = file
+        .build(file.spec(None).unwrap(), false)
+        .unwrap_err()
+        .to_string();
     assert_eq!(err, "slip.json: slip_depth must lie in [0, 1]");
-    assert!(hyst::model::register(&slip::SlipEffect).is_err(), "a name registers once");
+    assert!(
+        hyst::model::register(&slip::SlipEffect).is_err(),
+        "a name registers once"
+    );
 }
 
 #[test]
@@ -70,14 +82,25 @@ fn fitting_recovers_the_slip_and_diagnosis_names_it() {
     let fit = run::fit(&with, Method::Auto, &with.par.default_start(), &Quiet).unwrap();
     for (name, truth) in TRUTH {
         let got = fit.values[name];
-        assert!((got - truth).abs() < 0.02 * truth.abs(), "{name}: {got} vs {truth}");
+        assert!(
+            (got - truth).abs() < 0.02 * truth.abs(),
+            "{name}: {got} vs {truth}"
+        );
     }
     // Starting from bw, the diagnosis names slip as its top significant suspect.
     let bw = Problem::new(ModelSpec::BW, exp, &[]).unwrap();
     let fit = run::fit(&bw, Method::Auto, &bw.par.default_start(), &Quiet).unwrap();
     let d = Diagnosis::new(&bw, &fit).unwrap();
     let suspects = weigh(&bw, &fit, &d, &WeighOptions::default());
-    let top = suspects.iter().find(|s| s.significant).expect("a significant suspect");
-    assert_eq!(top.effect, EffectRef::from_name("slip").unwrap(), "{:?}", suspects.iter().map(|s| &s.evidence).collect::<Vec<_>>());
+    let top = suspects
+        .iter()
+        .find(|s| s.significant)
+        .expect("a significant suspect");
+    assert_eq!(
+        top.effect,
+        EffectRef::from_name("slip").unwrap(),
+        "{:?}",
+        suspects.iter().map(|s| &s.evidence).collect::<Vec<_>>()
+    );
     assert!(fit.scores.nrmse / top.nrmse_with > 3.0);
 }

@@ -26,10 +26,22 @@ fn top_suspect(exp: Experiment) -> (Option<(EffectKind, f64)>, f64, String) {
     let (problem, outcome) = fit_bw(exp);
     let d = Diagnosis::new(&problem, &outcome).unwrap();
     let suspects = weigh(&problem, &outcome, &d, &WeighOptions::default());
-    let report: Vec<String> =
-        suspects.iter().map(|s| format!("{} {} {:.4} {:.0}", s.effect.name(), s.significant, s.nrmse_with, s.delta_bic)).collect();
+    let report: Vec<String> = suspects
+        .iter()
+        .map(|s| {
+            format!(
+                "{} {} {:.4} {:.0}",
+                s.effect.name(),
+                s.significant,
+                s.nrmse_with,
+                s.delta_bic
+            )
+        })
+        .collect();
     let top = suspects.iter().find(|s| s.significant).map(|s| {
-        let EffectRef::Builtin(k) = s.effect else { panic!("no custom effects registered here") };
+        let EffectRef::Builtin(k) = s.effect else {
+            panic!("no custom effects registered here")
+        };
         (k, s.nrmse_with)
     });
     (top, outcome.scores.nrmse, report.join("; "))
@@ -61,7 +73,10 @@ fn each_hidden_effect_is_named_and_adding_it_cuts_the_error_threefold() {
             eprintln!("{} / {what}: bw {nrmse:.4}; {report}", kind.name());
             match top {
                 Some((k, with)) if k == kind && nrmse / with >= 3.0 => {}
-                other => failures.push(format!("{} / {what}: top {other:?}, bw {nrmse:.4}; {report}", kind.name())),
+                other => failures.push(format!(
+                    "{} / {what}: top {other:?}, bw {nrmse:.4}; {report}",
+                    kind.name()
+                )),
             }
         }
     }
@@ -91,14 +106,24 @@ fn pairs_of_hidden_effects_are_found_by_the_loop() {
             let (problem, outcome) = fit_bw(exp);
             let first = outcome.scores.nrmse;
             let found = discover(problem, outcome, &WeighOptions::default(), |_| {}).unwrap();
-            let ladder: Vec<String> = found.rungs.iter().map(|r| format!("{} {:.4}", r.model, r.nrmse)).collect();
+            let ladder: Vec<String> = found
+                .rungs
+                .iter()
+                .map(|r| format!("{} {:.4}", r.model, r.nrmse))
+                .collect();
             eprintln!("{} + {}: {}", a.name(), b.name(), ladder.join(" -> "));
             let last = found.last();
             let spec = last.spec;
             let named_first = found.steps.get(1).map(|s| s.spec);
-            let first_ok = named_first.is_some_and(|s| s.effects.contains(*a) || s.effects.contains(*b));
+            let first_ok =
+                named_first.is_some_and(|s| s.effects.contains(*a) || s.effects.contains(*b));
             if !(first_ok && first / last.outcome.scores.nrmse >= 3.0) {
-                failures.push(format!("{} + {}: {} (final {spec})", a.name(), b.name(), ladder.join(" -> ")));
+                failures.push(format!(
+                    "{} + {}: {} (final {spec})",
+                    a.name(),
+                    b.name(),
+                    ladder.join(" -> ")
+                ));
             }
         }
     }
@@ -106,7 +131,10 @@ fn pairs_of_hidden_effects_are_found_by_the_loop() {
 }
 
 fn shared(name: &str) -> Experiment {
-    let path = format!("{}/../../shared/data/synthetic/{name}", env!("CARGO_MANIFEST_DIR"));
+    let path = format!(
+        "{}/../../shared/data/synthetic/{name}",
+        env!("CARGO_MANIFEST_DIR")
+    );
     let rec = hyst::data::read(&path, &Default::default()).unwrap();
     Experiment::from_record(&rec, None).unwrap()
 }
@@ -123,8 +151,20 @@ fn the_shared_synthetic_records_pass() {
     let first = outcome.scores.nrmse;
     let found = discover(problem, outcome, &WeighOptions::default(), |_| {}).unwrap();
     let last = found.last();
-    assert!(last.spec.effects.contains(EffectKind::StrengthDegradation), "s2 ended at {}", last.spec);
-    assert!(last.spec.effects.contains(EffectKind::StiffnessDegradation), "s2 ended at {}", last.spec);
-    assert!(!last.spec.effects.contains(EffectKind::Pinching), "s2 ended at {}", last.spec);
+    assert!(
+        last.spec.effects.contains(EffectKind::StrengthDegradation),
+        "s2 ended at {}",
+        last.spec
+    );
+    assert!(
+        last.spec.effects.contains(EffectKind::StiffnessDegradation),
+        "s2 ended at {}",
+        last.spec
+    );
+    assert!(
+        !last.spec.effects.contains(EffectKind::Pinching),
+        "s2 ended at {}",
+        last.spec
+    );
     assert!(first / last.outcome.scores.nrmse >= 3.0);
 }

@@ -11,9 +11,9 @@
 //! multiplies the z-rate like the pinching factor of eq. 3.9. Off:
 //! `slip_depth = 0`.
 
+use hyst::model::CustomEffect;
 use hysteresis::bwbn::effects::{At, Coefficients, Effect};
 use hysteresis::bwbn::{BoucWen, ParamError, ParamSpec, Rule, Unit};
-use hyst::model::CustomEffect;
 
 /// The effect's parameters.
 pub struct Slip {
@@ -64,13 +64,23 @@ impl CustomEffect for SlipEffect {
     fn doc(&self) -> &'static str {
         "bars slip after each reversal: a band of low stiffness of constant width around z = 0"
     }
-    fn build(&self, _: &BoucWen<f64>, v: &[f64]) -> Result<Box<dyn Effect<f64> + Send + Sync>, ParamError> {
+    fn build(
+        &self,
+        _: &BoucWen<f64>,
+        v: &[f64],
+    ) -> Result<Box<dyn Effect<f64> + Send + Sync>, ParamError> {
         let (depth, width) = (v[0], v[1]);
         if !(0.0..1.0).contains(&depth) {
-            return Err(ParamError { field: "slip_depth", rule: Rule::NotAFraction });
+            return Err(ParamError {
+                field: "slip_depth",
+                rule: Rule::NotAFraction,
+            });
         }
         if !(width > 0.0) {
-            return Err(ParamError { field: "slip_width", rule: Rule::NotPositive });
+            return Err(ParamError {
+                field: "slip_width",
+                rule: Rule::NotPositive,
+            });
         }
         Ok(Box::new(Slip { depth, width }))
     }

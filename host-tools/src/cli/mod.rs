@@ -2,10 +2,12 @@
 
 pub mod diagnose;
 pub mod discover;
+pub mod export;
 pub mod fit;
 pub mod params;
 pub mod sensitivity;
 pub mod simulate;
+pub mod table;
 
 use clap::{Parser, Subcommand};
 
@@ -33,6 +35,10 @@ pub enum Command {
     Sensitivity(sensitivity::SensitivityArgs),
     /// Drive a model with a displacement history; CSV displacement,force,tangent.
     Simulate(simulate::SimulateArgs),
+    /// Write the parameter table for the device (binary, Rust or C).
+    Export(export::ExportArgs),
+    /// Work with binary parameter tables (`check`).
+    Table(table::TableArgs),
 }
 
 /// Runs a parsed command line.
@@ -44,5 +50,7 @@ pub fn run(cli: Cli) -> anyhow::Result<()> {
         Command::Params(a) => params::run(a),
         Command::Sensitivity(a) => sensitivity::run(a),
         Command::Simulate(a) => simulate::run(a),
+        Command::Export(a) => export::run(a),
+        Command::Table(a) => table::run(a),
     }
 }

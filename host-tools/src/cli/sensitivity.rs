@@ -50,19 +50,32 @@ pub fn run(args: SensitivityArgs) -> Result<()> {
     let x = problem.par.normalise(&values);
     let sweeps = sensitivity::analyse(&problem, &x, args.levels.max(3));
     if let Some(path) = &args.plot {
-        let change: Vec<f64> = sweeps.first().map(|s| s.changes.iter().map(|c| 100.0 * c).collect()).unwrap_or_default();
-        let curves: Vec<Signal> = sweeps.iter().map(|s| Signal::model(&s.name, "", &s.errors)).collect();
+        let change: Vec<f64> = sweeps
+            .first()
+            .map(|s| s.changes.iter().map(|c| 100.0 * c).collect())
+            .unwrap_or_default();
+        let curves: Vec<Signal> = sweeps
+            .iter()
+            .map(|s| Signal::model(&s.name, "", &s.errors))
+            .collect();
         let fig = plot(&change, "e, eq. 3.24", &curves)?;
-        std::fs::write(path, fig.to_svg()).with_context(|| format!("{}: cannot write", path.display()))?;
+        std::fs::write(path, fig.to_svg())
+            .with_context(|| format!("{}: cannot write", path.display()))?;
     }
     let mut ranked: Vec<_> = sweeps.iter().collect();
     ranked.sort_by_key(|s| s.rank);
     if args.json {
         println!("{}", serde_json::to_string_pretty(&ranked)?);
     } else {
-        println!("{:<12} {:>14} {:>18} {:>5}", "parameter", "value", "max e (eq. 3.25)", "rank");
+        println!(
+            "{:<12} {:>14} {:>18} {:>5}",
+            "parameter", "value", "max e (eq. 3.25)", "rank"
+        );
         for s in ranked {
-            println!("{:<12} {:>14.6e} {:>18.6e} {:>5}", s.name, s.nominal, s.max_error, s.rank);
+            println!(
+                "{:<12} {:>14.6e} {:>18.6e} {:>5}",
+                s.name, s.nominal, s.max_error, s.rank
+            );
         }
     }
     Ok(())

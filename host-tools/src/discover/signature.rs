@@ -88,7 +88,9 @@ fn pinching(d: &Diagnosis) -> Signature {
         Some(r) => sentence.push_str(&format!(
             "; there the model is {r:.2}x as stiff as the measurement"
         )),
-        None => sentence.push_str("; too few reloading samples near zero force to compare stiffness"),
+        None => {
+            sentence.push_str("; too few reloading samples near zero force to compare stiffness")
+        }
     }
     if !supports {
         sentence.push_str(&format!(" (pinching shows as {PINCHING_RATIO}x or more)"));

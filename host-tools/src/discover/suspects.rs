@@ -280,8 +280,10 @@ pub fn weigh(
         .collect();
     // Effects whose signature is absent (pinching without its pattern) do
     // not enter the comparison.
-    let signatures: Vec<(EffectRef, Option<Signature>)> =
-        candidates.iter().map(|&e| (e, signature::of(e, diagnosis))).collect();
+    let signatures: Vec<(EffectRef, Option<Signature>)> = candidates
+        .iter()
+        .map(|&e| (e, signature::of(e, diagnosis)))
+        .collect();
     let gated = |e: &EffectRef| {
         signatures
             .iter()

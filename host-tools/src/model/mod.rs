@@ -2,8 +2,10 @@
 
 pub mod custom;
 mod params;
+mod phm_file;
 mod spec;
 
 pub use custom::{register, CustomEffect, Extras};
 pub use params::{to_json, ParamFile};
+pub use phm_file::{is_phm, PhmFile, PHM_MODEL, PHM_POINTS};
 pub use spec::{Base, EffectRef, ModelSpec};

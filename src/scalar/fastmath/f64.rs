@@ -218,9 +218,12 @@ fn pow_core(xb: u64, eoff: i64, y: f64) -> f64 {
     // k = round(32 y log2 x); the rest g = 32 y log2 x - k is gathered so that only
     // additions of size |g| <= 1/2 round.
     let kt = (t1 + (p + t2)) * 32.0 + SHIFT;
-    let k = kt.to_bits() as i64 - SHIFT.to_bits() as i64;
+    // Wrapping: for |y log2 x| far beyond the range (kt negative, infinite
+    // or NaN) the difference of the bit patterns overflows, and the wrapped
+    // value lands outside the window the next line accepts.
+    let k = (kt.to_bits() as i64).wrapping_sub(SHIFT.to_bits() as i64);
     let kf = kt - SHIFT;
-    if (k + 35_000) as u64 > 70_000 {
+    if (k.wrapping_add(35_000)) as u64 > 70_000 {
         return pow_out_of_range(t1 + (p + t2));
     }
     let g = ((t1 * 32.0 - kf) + p * 32.0) + t2 * 32.0;
@@ -434,6 +437,18 @@ mod tests {
             };
             assert!(ok, "exp({x}) = {got:e} vs {want:e}");
             x += 0.0137;
+        }
+    }
+
+    /// `y log2 x` of about -3e14 puts the rounding constant's sum just below
+    /// zero, where the bit-pattern difference overflowed `i64` (found by
+    /// fuzzing the table loader: a panic in debug builds).
+    #[test]
+    fn pow_far_below_the_range_underflows_without_overflowing_the_exponent() {
+        for y in [2.2e14, 3e14, 3.4e14] {
+            assert_eq!(pow(0.5, y), 0.0, "0.5^{y}");
+            assert_eq!(pow(2.0, -y), 0.0, "2^-{y}");
+            assert_eq!(pow(2.0, y), f64::INFINITY, "2^{y}");
         }
     }
 

@@ -162,7 +162,11 @@ fn non_dominated(points: &[[f64; 2]]) -> Vec<usize> {
 /// RMS error against a relative change of each parameter (thesis §3.5.3,
 /// Eq. 3.24, Fig. 3.7): one curve per parameter over the changes in
 /// `change_percent` (typically −50 … +50).
-pub fn sensitivity(change_percent: &[f64], error_name: &str, curves: &[Signal]) -> Result<Figure, Error> {
+pub fn sensitivity(
+    change_percent: &[f64],
+    error_name: &str,
+    curves: &[Signal],
+) -> Result<Figure, Error> {
     let unit = curves.first().map_or("", |s| s.unit);
     same_unit(curves, unit)?;
     let mut panel = Panel::new(
@@ -251,7 +255,8 @@ mod tests {
     fn sensitivity_curves_must_match_changes() {
         let change = [-50.0, 0.0, 50.0];
         let e = [3.0, 0.0];
-        let err = sensitivity(&change, "RMS error", &[Signal::model("alpha", "mm", &e)]).unwrap_err();
+        let err =
+            sensitivity(&change, "RMS error", &[Signal::model("alpha", "mm", &e)]).unwrap_err();
         assert!(err.to_string().contains("'alpha'"), "{err}");
     }
 }

@@ -1,0 +1,102 @@
+//! The bytes of a table as a file: the blob itself, a Rust `static` or a C
+//! header.
+
+use anyhow::{bail, Result};
+use std::fmt::Write;
+
+/// Output format of `hyst export`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum Format {
+    /// The table's bytes (for `include_bytes!` or a flash partition).
+    Bin,
+    /// A Rust source file with the table as a `static` byte array.
+    Rust,
+    /// A C header with the table as a `static const uint8_t` array.
+    C,
+}
+
+fn hex_rows(out: &mut String, bytes: &[u8], indent: &str) {
+    for row in bytes.chunks(16) {
+        out.push_str(indent);
+        let cells: Vec<String> = row.iter().map(|b| format!("0x{b:02x},")).collect();
+        out.push_str(&cells.join(" "));
+        out.push('\n');
+    }
+}
+
+fn is_identifier(name: &str) -> bool {
+    let mut chars = name.chars();
+    chars
+        .next()
+        .is_some_and(|c| c.is_ascii_alphabetic() || c == '_')
+        && chars.all(|c| c.is_ascii_alphanumeric() || c == '_')
+}
+
+/// Renders `bytes` in `format`. `name` is the Rust static's or C array's
+/// name; `about` is a comment (provenance and contents, one line each).
+pub fn render(bytes: &[u8], format: Format, name: &str, about: &[String]) -> Result<Vec<u8>> {
+    if format != Format::Bin && !is_identifier(name) {
+        bail!("--name {name:?} is not a valid identifier");
+    }
+    let n = bytes.len();
+    let mut s = String::new();
+    match format {
+        Format::Bin => return Ok(bytes.to_vec()),
+        Format::Rust => {
+            for line in about {
+                let _ = writeln!(s, "// {line}");
+            }
+            let _ = writeln!(
+                s,
+                "\n/// The parameter table (format: `docs/table-format.md`). A `static`,\n\
+                 /// so it lives once in flash and `BwbnTable::load(&{name})` /\n\
+                 /// `PhmTable::load(&{name})` read it in place."
+            );
+            let _ = writeln!(s, "#[rustfmt::skip]\npub static {name}: [u8; {n}] = [");
+            hex_rows(&mut s, bytes, "    ");
+            s.push_str("];\n");
+        }
+        Format::C => {
+            let guard = format!("{}_H", name.to_ascii_uppercase());
+            s.push_str("/*\n");
+            for line in about {
+                let _ = writeln!(s, " * {line}");
+            }
+            s.push_str(" */\n");
+            let _ = writeln!(
+                s,
+                "#ifndef {guard}\n#define {guard}\n\n#include <stdint.h>\n"
+            );
+            let _ = writeln!(s, "#define {}_LEN {n}u\n", name.to_ascii_uppercase());
+            let _ = writeln!(
+                s,
+                "/* Format: docs/table-format.md. Verify magic, version, length and the\n   \
+                 CRC-32 before using a value. */\nstatic const uint8_t {name}[{n}] = {{"
+            );
+            hex_rows(&mut s, bytes, "    ");
+            let _ = writeln!(s, "}};\n\n#endif /* {guard} */");
+        }
+    }
+    Ok(s.into_bytes())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn sources_hold_the_bytes_sixteen_a_row() {
+        let bytes: Vec<u8> = (0..20).collect();
+        let r = String::from_utf8(render(&bytes, Format::Rust, "TABLE", &["x".into()]).unwrap())
+            .unwrap();
+        assert!(r.starts_with("// x\n"));
+        assert!(r.contains("pub static TABLE: [u8; 20] = [\n    0x00, 0x01,"));
+        assert!(r.contains("0x0f,\n    0x10, 0x11, 0x12, 0x13,\n];"));
+        let c = String::from_utf8(render(&bytes, Format::C, "hyst_table", &[]).unwrap()).unwrap();
+        assert!(c.contains("#define HYST_TABLE_LEN 20u"));
+        assert!(c.contains("static const uint8_t hyst_table[20] = {\n    0x00,"));
+        assert!(c.trim_end().ends_with("#endif /* HYST_TABLE_H */"));
+        assert!(render(&bytes, Format::C, "2x", &[]).is_err());
+        assert_eq!(render(&bytes, Format::Bin, "", &[]).unwrap(), bytes);
+    }
+}

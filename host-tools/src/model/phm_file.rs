@@ -1,0 +1,211 @@
+//! PHM parameter files (the format proposed in `docs/phm.md`):
+//!
+//! ```json
+//! {
+//!   "model": "phm-torsion",
+//!   "units": { "twist": "deg", "torque": "kN m" },
+//!   "primary": {
+//!     "positive": [[0.21, 105.0], [1.45, 168.0], [4.0, 172.0], [8.5, 140.0]],
+//!     "negative": [[0.22, 101.0], [1.40, 162.0], [4.0, 165.0], [8.5, 131.0]]
+//!   },
+//!   "coefficients": { "eq4_a": 0.7513, "eq4_b": -0.786, "cycle_band": 0.05 },
+//!   "memory": 16
+//! }
+//! ```
+//!
+//! `negative` may be left out (a symmetric column); a coefficient left out
+//! keeps the thesis' value; an unknown key or coefficient name is an error.
+
+use anyhow::{anyhow, bail, Context, Result};
+use hysteresis::phm::{PhmParams, SPECS};
+use serde_json::{Map, Value};
+use std::path::{Path, PathBuf};
+
+/// The `model` value of a PHM file.
+pub const PHM_MODEL: &str = "phm-torsion";
+
+/// Points per primary curve the host reads (the core's default capacity).
+pub const PHM_POINTS: usize = 8;
+
+/// A PHM parameter file as read and validated.
+#[derive(Clone, Debug)]
+pub struct PhmFile {
+    /// Where it came from.
+    pub path: PathBuf,
+    /// The validated parameter set.
+    pub params: PhmParams<f64, PHM_POINTS>,
+    /// `(twist, torque)` units, if stated.
+    pub units: Option<(String, String)>,
+}
+
+/// Whether the JSON text is a PHM file (its `model` is `phm-torsion`).
+pub fn is_phm(value: &Value) -> bool {
+    value.get("model").and_then(Value::as_str) == Some(PHM_MODEL)
+}
+
+fn points(path: &Path, key: &str, v: &Value) -> Result<Vec<[f64; 2]>> {
+    let bad = || {
+        anyhow!(
+            "{}: primary.{key} must be an array of [twist, torque] pairs of finite numbers",
+            path.display()
+        )
+    };
+    v.as_array()
+        .ok_or_else(bad)?
+        .iter()
+        .map(|p| match p.as_array().map(Vec::as_slice) {
+            Some([x, y]) => match (x.as_f64(), y.as_f64()) {
+                (Some(x), Some(y)) if x.is_finite() && y.is_finite() => Ok([x, y]),
+                _ => Err(bad()),
+            },
+            _ => Err(bad()),
+        })
+        .collect()
+}
+
+impl PhmFile {
+    /// Reads and validates a PHM parameter file.
+    pub fn read(path: impl AsRef<Path>) -> Result<Self> {
+        let path = path.as_ref();
+        let text = std::fs::read_to_string(path)
+            .with_context(|| format!("{}: cannot read", path.display()))?;
+        let value: Value = serde_json::from_str(&text).map_err(|e| {
+            anyhow!(
+                "{}:{}:{}: not valid JSON: {e}",
+                path.display(),
+                e.line(),
+                e.column()
+            )
+        })?;
+        Self::from_value(path, &value)
+    }
+
+    /// Validates a parsed PHM file.
+    pub fn from_value(path: &Path, value: &Value) -> Result<Self> {
+        let Some(map) = value.as_object() else {
+            bail!("{}: expected a JSON object", path.display());
+        };
+        let mut positive = None;
+        let mut negative = None;
+        let mut coefficients = Map::new();
+        let mut units = None;
+        for (key, v) in map {
+            match key.as_str() {
+                "model" if is_phm(value) => {}
+                "memory" => {
+                    if v.as_u64() != Some(16) {
+                        bail!(
+                            "{}: \"memory\" must be 16, the inner-cycle depth the host uses",
+                            path.display()
+                        );
+                    }
+                }
+                "units" => {
+                    let get = |k: &str| v.get(k).and_then(Value::as_str).map(str::to_string);
+                    match (get("twist"), get("torque")) {
+                        (Some(t), Some(m)) => units = Some((t, m)),
+                        _ => bail!(
+                            "{}: \"units\" must be {{\"twist\": ..., \"torque\": ...}}",
+                            path.display()
+                        ),
+                    }
+                }
+                "primary" => {
+                    let Some(p) = v.as_object() else {
+                        bail!("{}: \"primary\" must be an object", path.display());
+                    };
+                    for (k, curve) in p {
+                        match k.as_str() {
+                            "positive" => positive = Some(points(path, k, curve)?),
+                            "negative" => negative = Some(points(path, k, curve)?),
+                            other => bail!(
+                                "{}: primary.{other}: expected \"positive\" or \"negative\"",
+                                path.display()
+                            ),
+                        }
+                    }
+                }
+                "coefficients" => {
+                    let Some(c) = v.as_object() else {
+                        bail!("{}: \"coefficients\" must be an object", path.display());
+                    };
+                    for (name, x) in c {
+                        if !SPECS.iter().any(|s| s.name == name) {
+                            bail!(
+                                "{}: \"{name}\" is not a PHM coefficient; known: {}",
+                                path.display(),
+                                SPECS.iter().map(|s| s.name).collect::<Vec<_>>().join(", ")
+                            );
+                        }
+                        if !x.as_f64().is_some_and(f64::is_finite) {
+                            bail!(
+                                "{}: coefficient \"{name}\" is not a finite number",
+                                path.display()
+                            );
+                        }
+                    }
+                    coefficients = c.clone();
+                }
+                other => bail!(
+                    "{}: unknown key \"{other}\" in a PHM file (model, units, primary, coefficients, memory)",
+                    path.display()
+                ),
+            }
+        }
+        let positive =
+            positive.ok_or_else(|| anyhow!("{}: primary.positive is missing", path.display()))?;
+        let negative = negative.unwrap_or_else(|| positive.clone());
+        let params = PhmParams::from_named(&positive, &negative, |name| {
+            coefficients.get(name).and_then(Value::as_f64)
+        })
+        .map_err(|e| anyhow!("{}: {e}", path.display()))?;
+        Ok(PhmFile {
+            path: path.to_path_buf(),
+            params,
+            units,
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use serde_json::json;
+
+    fn read(v: Value) -> Result<PhmFile> {
+        PhmFile::from_value(Path::new("t.json"), &v)
+    }
+
+    #[test]
+    fn reads_the_documented_example() {
+        let f = read(json!({
+            "model": "phm-torsion",
+            "units": { "twist": "deg", "torque": "kN m" },
+            "primary": {
+                "positive": [[0.21, 105.0], [1.45, 168.0], [4.0, 172.0], [8.5, 140.0]],
+                "negative": [[0.22, 101.0], [1.40, 162.0], [4.0, 165.0], [8.5, 131.0]]
+            },
+            "coefficients": { "eq4_a": 0.7513, "eq4_b": -0.786, "cycle_band": 0.05 },
+            "memory": 16
+        }))
+        .unwrap();
+        assert_eq!(f.params.coefficients().get("eq4_b"), Some(-0.786));
+        assert_eq!(f.units, Some(("deg".into(), "kN m".into())));
+    }
+
+    #[test]
+    fn errors_name_the_file_and_the_key() {
+        let e = |v: Value| read(v).unwrap_err().to_string();
+        let curve = json!([[1.0, 5.0], [4.0, 6.5]]);
+        assert!(e(json!({"model": "phm-torsion", "primary": {"positive": curve}, "coefficients": {"eq9": 1.0}}))
+            .starts_with("t.json: \"eq9\" is not a PHM coefficient"));
+        assert_eq!(
+            e(json!({"model": "phm-torsion", "primary": {"positive": [[1.0, 5.0], [0.5, 6.0]]}})),
+            "t.json: positive primary curve, point 1: twists must increase strictly from zero"
+        );
+        assert!(
+            e(json!({"model": "phm-torsion", "primary": {"positive": curve}, "memroy": 16}))
+                .contains("unknown key \"memroy\"")
+        );
+    }
+}
