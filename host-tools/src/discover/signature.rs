@@ -17,17 +17,19 @@
 //! in another form, and its six parameters then fit noise and the
 //! displacement noise of the record's input a little better than the one of
 //! stiffness degradation. So pinching only counts where the residual shows
-//! it: the model at least [`PINCHING_RATIO`] times as stiff as the
-//! measurement near zero force on reloading branches (measured on the
-//! records with hidden effects: 1.8-2.3 with pinching, 0.95-1.03 without).
+//! it: relative to the measurement, the model is at least
+//! [`PINCHING_RATIO`] times as stiff near zero force on reloading branches
+//! as it is further along them (pinching is a local softening; degradation
+//! softens the whole branch).
 
 use super::diagnosis::Diagnosis;
 use crate::data::Branch;
 use crate::model::EffectRef;
 use hysteresis::bwbn::EffectKind;
 
-/// The ratio of the model's stiffness to the measured one, near zero force
-/// on reloading branches, from which the residual shows pinching.
+/// How much stiffer, relative to the measurement, the model must be near zero
+/// force on reloading branches than further along them for the residual to
+/// show pinching.
 pub const PINCHING_RATIO: f64 = 1.25;
 
 /// What the residual says about one effect.
@@ -64,10 +66,13 @@ pub fn of(effect: EffectRef, d: &Diagnosis) -> Option<Signature> {
 
 fn pinching(d: &Diagnosis) -> Signature {
     let labels = d.segmentation.labels();
-    let near: Vec<bool> = labels
-        .iter()
-        .map(|l| l.near_zero_force && l.branch == Branch::Reloading)
-        .collect();
+    let reloading = |near: bool| -> Vec<bool> {
+        labels
+            .iter()
+            .map(|l| l.branch == Branch::Reloading && l.near_zero_force == near)
+            .collect()
+    };
+    let (near, far) = (reloading(true), reloading(false));
     let (mut sq, mut n) = (0.0, 0usize);
     for (r, &is) in d.residual.iter().zip(&near) {
         if is {
@@ -77,27 +82,33 @@ fn pinching(d: &Diagnosis) -> Signature {
     }
     let share = sq / d.total_sq.max(f64::MIN_POSITIVE);
     let sample_share = n as f64 / d.residual.len().max(1) as f64;
-    let ratio = super::diagnosis::stiffness_ratio(&near, &d.force, d.model_force());
-    let supports = ratio.is_some_and(|r| r >= PINCHING_RATIO);
+    let mf = d.model_force();
+    let r_near = super::diagnosis::stiffness_ratio(&near, &d.force, mf);
+    let r_far = super::diagnosis::stiffness_ratio(&far, &d.force, mf);
+    // Pinching softens the member near zero force only: the model, which
+    // lacks it, is stiffer there than along the rest of the reloading branch.
+    let localised = match (r_near, r_far) {
+        (Some(a), Some(b)) if b > 0.0 => Some(a / b),
+        _ => None,
+    };
+    let supports = localised.is_some_and(|r| r >= PINCHING_RATIO);
     let mut sentence = format!(
         "{:.0}% of the error lies within 20% of zero force on reloading branches, which hold {:.0}% of the samples",
         100.0 * share,
         100.0 * sample_share
     );
-    match ratio {
-        Some(r) => sentence.push_str(&format!(
-            "; there the model is {r:.2}x as stiff as the measurement"
+    match (r_near, r_far) {
+        (Some(a), Some(b)) => sentence.push_str(&format!(
+            "; there the model is {a:.2}x as stiff as the measurement, against {b:.2}x further along the reloading branches"
         )),
-        None => {
-            sentence.push_str("; too few reloading samples near zero force to compare stiffness")
-        }
+        _ => sentence.push_str("; too few reloading samples to compare stiffness near and away from zero force"),
     }
     if !supports {
-        sentence.push_str(&format!(" (pinching shows as {PINCHING_RATIO}x or more)"));
+        sentence.push_str(&format!(" (pinching shows as a ratio of {PINCHING_RATIO} or more)"));
     }
     sentence.push('.');
     Signature {
-        strength: ratio.map_or(0.0, |r| (r - 1.0).max(0.0)),
+        strength: localised.map_or(0.0, |r| (r - 1.0).max(0.0)),
         supports,
         sentence,
     }

@@ -45,10 +45,10 @@ impl Noise {
         displacement: 0.005,
         force: 0.005,
     };
-    /// 2% of Zu and 2% of peak force.
+    /// 1.5% of Zu and 1.5% of peak force (the shared records: 1.2% and 1%).
     pub const HIGH: Noise = Noise {
-        displacement: 0.02,
-        force: 0.02,
+        displacement: 0.015,
+        force: 0.015,
     };
 }
 
