@@ -21,8 +21,11 @@
 //!   (1/V) (Gamma_alpha . x_i) b_i` (orthogonal to every linear field),
 //!   mode rates `qdot_i_alpha = v_i . gamma_alpha`, forces
 //!   `Q_i_alpha += k dt qdot_i_alpha`, `f_ia += Q_i_alpha gamma_alpha_a`, with
-//!   the stiffness `k = s E sum_a |b_a|^2 / (72 V)`: scale `s = 1` gives a
-//!   cube of side `h` the exact pure-bending hourglass stiffness `E h / 48`.
+//!   the stiffness `k = s G sum_a |b_a|^2 / (72 V)` (`G` the shear modulus).
+//!   Scale `s = 1` gives a cube of side `h` the stiffness `G h / 48`, the
+//!   exact energy of the shear strain that varies linearly across an
+//!   element in torsion (`u_x = -theta' y z`, whose bilinear part is the
+//!   `eta zeta` hourglass mode); pure bending would need `E h / 48`.
 
 use super::material::{SolidMaterial, Sym6};
 use super::simd::{F4, LANES};
@@ -48,19 +51,6 @@ pub const GAMMA: [[f64; 8]; 4] = [
     [-1.0, 1.0, -1.0, 1.0, 1.0, -1.0, 1.0, -1.0],
 ];
 
-/// Node relabellings (orientation-preserving symmetries of the cube) that
-/// carry node 1 to node `a`, for the closed form of `b_a`.
-const PERM: [[usize; 8]; 8] = [
-    [0, 1, 2, 3, 4, 5, 6, 7],
-    [1, 2, 3, 0, 5, 6, 7, 4],
-    [2, 3, 0, 1, 6, 7, 4, 5],
-    [3, 0, 1, 2, 7, 4, 5, 6],
-    [4, 7, 6, 5, 0, 3, 2, 1],
-    [5, 4, 7, 6, 1, 0, 3, 2],
-    [6, 5, 4, 7, 2, 1, 0, 3],
-    [7, 6, 5, 4, 3, 2, 1, 0],
-];
-
 /// Trilinear shape functions at natural coordinates `p`.
 pub fn shape(p: [f64; 3]) -> [f64; 8] {
     let mut n = [0.0; 8];
@@ -70,39 +60,111 @@ pub fn shape(p: [f64; 3]) -> [f64; 8] {
     n
 }
 
-/// One Cartesian component of the uniform-gradient vectors, from the two
-/// other coordinate components `(y, z)` (Flanagan and Belytschko 1981,
-/// eq. 79; `b_y` uses `(z, x)`, `b_z` uses `(x, y)`).
+/// Coefficients of a nodal field in the isoparametric basis,
+/// `p = p0 + xi e1 + eta e2 + zeta e3 + eta zeta h1 + zeta xi h2 + xi eta h3
+/// + xi eta zeta h4`, returned as `[e1, e2, e3, h1, h2, h3, h4]`; each is
+/// `(1/8) sum_a c(a) p_a` for its sign pattern `c`, by butterflies.
 #[inline(always)]
-fn b_component(y: &[F4; 8], z: &[F4; 8]) -> [F4; 8] {
-    let mut b = [F4::ZERO; 8];
-    for (a, b) in b.iter_mut().enumerate() {
-        let p = &PERM[a];
-        let (y2, y3, y4, y5, y6, y8) = (y[p[1]], y[p[2]], y[p[3]], y[p[4]], y[p[5]], y[p[7]]);
-        let (z2, z3, z4, z5, z6, z8) = (z[p[1]], z[p[2]], z[p[3]], z[p[4]], z[p[5]], z[p[7]]);
-        let s = y2 * ((z6 - z3) - (z4 - z5))
-            + y3 * (z2 - z4)
-            + y4 * ((z3 - z8) - (z5 - z2))
-            + y5 * ((z8 - z6) - (z2 - z4))
-            + y6 * (z5 - z2)
-            + y8 * (z4 - z5);
-        *b = s * (1.0 / 12.0);
-    }
-    b
+fn coefficients(p: &[F4; 8]) -> [F4; 7] {
+    let s: [F4; 4] = std::array::from_fn(|a| p[a] + p[a + 4]);
+    let d: [F4; 4] = std::array::from_fn(|a| p[a + 4] - p[a]);
+    let k = 0.125;
+    let (su, sw) = (s[2] - s[0], s[1] - s[3]);
+    let (du, dw) = (d[2] - d[0], d[1] - d[3]);
+    let (s02, s13) = (s[0] + s[2], s[1] + s[3]);
+    let (d02, d13) = (d[0] + d[2], d[1] + d[3]);
+    [
+        (su + sw) * k,
+        (su - sw) * k,
+        (d02 + d13) * k,
+        (du - dw) * k,
+        (du + dw) * k,
+        (s02 - s13) * k,
+        (d02 - d13) * k,
+    ]
 }
 
-/// Uniform-gradient vectors `b[i][a]` and volumes of a batch.
+/// Nodal values `f_a = sum_k c_k(a) f[k]` from coefficients ordered as in
+/// [`coefficients`] (the transpose of that map, without the 1/8).
 #[inline(always)]
-pub fn gradients(x: &[[F4; 8]; 3]) -> ([[F4; 8]; 3], F4) {
-    let b = [
-        b_component(&x[1], &x[2]),
-        b_component(&x[2], &x[0]),
-        b_component(&x[0], &x[1]),
+fn expand(f: &[F4; 7]) -> [F4; 8] {
+    let (a1, a2) = (f[0] - f[1], f[0] + f[1]);
+    let (c1, c2) = (f[4] - f[3], f[4] + f[3]);
+    // Corners (xi, eta) = (-,-), (+,-), (+,+), (-,+).
+    let a = [f[5] - a2, a1 - f[5], a2 + f[5], -a1 - f[5]];
+    let c = [
+        f[2] - c2 + f[6],
+        f[2] + c1 - f[6],
+        f[2] + c2 + f[6],
+        f[2] - c1 - f[6],
+    ];
+    [
+        a[0] - c[0],
+        a[1] - c[1],
+        a[2] - c[2],
+        a[3] - c[3],
+        a[0] + c[0],
+        a[1] + c[1],
+        a[2] + c[2],
+        a[3] + c[3],
+    ]
+}
+
+type V3 = [F4; 3];
+
+#[inline(always)]
+fn cross4(a: V3, b: V3) -> V3 {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+
+#[inline(always)]
+fn lin(a: V3, fa: f64, b: V3, fb: f64) -> V3 {
+    std::array::from_fn(|i| a[i] * fa + b[i] * fb)
+}
+
+/// Coefficient vectors `[e1, e2, e3, h1, h2, h3, h4]` of the geometry, the
+/// derivatives `G_k = dV/d(coefficient k)` of the volume for the first six
+/// (`h4` does not change the volume), and the volume.
+///
+/// With the coefficients, `V = 8 [e1.(e2 x e3) + (e1.(h3 x h2) +
+/// e2.(h1 x h3) + e3.(h2 x h1)) / 3]` exactly (the integral of det J over
+/// the cube), so `b_a = dV/dx_a = (1/8) sum_k c_k(a) G_k`: the uniform
+/// gradient of Flanagan and Belytschko (1981) without forming it per node.
+#[inline(always)]
+fn geometry(x: &[[F4; 8]; 3]) -> ([V3; 7], [V3; 6], F4) {
+    let cx = [coefficients(&x[0]), coefficients(&x[1]), coefficients(&x[2])];
+    let c: [V3; 7] = std::array::from_fn(|k| [cx[0][k], cx[1][k], cx[2][k]]);
+    let (e1, e2, e3, h1, h2, h3) = (c[0], c[1], c[2], c[3], c[4], c[5]);
+    let t = 8.0 / 3.0;
+    let g = [
+        lin(cross4(e2, e3), 8.0, cross4(h3, h2), t),
+        lin(cross4(e3, e1), 8.0, cross4(h1, h3), t),
+        lin(cross4(e1, e2), 8.0, cross4(h2, h1), t),
+        lin(cross4(h3, e2), t, cross4(e3, h2), t),
+        lin(cross4(e1, h3), t, cross4(h1, e3), t),
+        lin(cross4(h2, e1), t, cross4(e2, h1), t),
     ];
     let mut v = F4::ZERO;
-    for a in 0..8 {
-        v = b[0][a].mul_add(x[0][a], v);
+    for k in 0..6 {
+        v = c[k][0].mul_add(g[k][0], v);
     }
+    (c, g, v)
+}
+
+/// Uniform-gradient vectors `b[i][a] = dV/dx_ia` and volumes of a batch.
+pub fn gradients(x: &[[F4; 8]; 3]) -> ([[F4; 8]; 3], F4) {
+    let (_, g, v) = geometry(x);
+    let b = std::array::from_fn(|i| {
+        let mut f = [F4::ZERO; 7];
+        for k in 0..6 {
+            f[k] = g[k][i] * 0.125;
+        }
+        expand(&f)
+    });
     (b, v)
 }
 
@@ -176,16 +238,17 @@ pub fn step<M: SolidMaterial>(
 ) -> (HexForces, HexEnergy) {
     let x = gather(&batch.nodes, x_all);
     let v = gather(&batch.nodes, v_all);
-    let (b, vol) = gradients(&x);
+    let (cx, g, vol) = geometry(&x);
     let inv_v = F4::splat(1.0) / vol;
+    let vc = [coefficients(&v[0]), coefficients(&v[1]), coefficients(&v[2])];
 
-    // Velocity gradient L_ij = (1/V) sum_a v_ia b_ja.
+    // Velocity gradient L_ij = (1/V) sum_a v_ia b_ja = (1/V) sum_k vc_ki G_kj.
     let mut l = [[F4::ZERO; 3]; 3];
     for (i, li) in l.iter_mut().enumerate() {
         for (j, lij) in li.iter_mut().enumerate() {
             let mut s = F4::ZERO;
-            for a in 0..8 {
-                s = v[i][a].mul_add(b[j][a], s);
+            for k in 0..6 {
+                s = vc[i][k].mul_add(g[k][j], s);
             }
             *lij = s * inv_v;
         }
@@ -242,6 +305,24 @@ pub fn step<M: SolidMaterial>(
     let evn = ev.min0();
     let sv = batch.bv1 * ev - batch.bv2 * evn * evn;
 
+    // Hourglass control. Gamma_alpha . x_j = 8 h_alpha_j; the mode rates
+    // are q_i_alpha = v_i . gamma_alpha = 8 vh_alpha_i - sum_j s_alpha_j L_ij.
+    let mut hg_work = F4::ZERO;
+    let kdt = batch.hg_k * dt;
+    let s_al: [V3; 4] = std::array::from_fn(|al| std::array::from_fn(|j| cx[3 + al][j] * 8.0));
+    for i in 0..3 {
+        for al in 0..4 {
+            let proj = s_al[al][0].mul_add(l[i][0], s_al[al][1].mul_add(l[i][1], s_al[al][2] * l[i][2]));
+            let q = vc[i][3 + al] * 8.0 - proj;
+            let old = batch.hg[i][al];
+            let upd = kdt.mul_add(q, old);
+            batch.hg[i][al] = upd;
+            hg_work = ((old + upd) * half_dt).mul_add(q, hg_work);
+        }
+    }
+
+    // Forces f_ia = sigma~_ij b_ja + Q_i_alpha Gamma_alpha_a, with
+    // sigma~ = sigma + sigma_v I - (1/V) Q s, expanded from coefficients.
     let sig = [
         [new[0] + sv, new[3], new[5]],
         [new[3], new[1] + sv, new[4]],
@@ -249,44 +330,19 @@ pub fn step<M: SolidMaterial>(
     ];
     let mut f = [[F4::ZERO; 8]; 3];
     for i in 0..3 {
-        for a in 0..8 {
-            f[i][a] = sig[i][0].mul_add(b[0][a], sig[i][1].mul_add(b[1][a], sig[i][2] * b[2][a]));
+        let q = &batch.hg[i];
+        let st: [F4; 3] = std::array::from_fn(|j| {
+            let qs = q[0].mul_add(s_al[0][j], q[1].mul_add(s_al[1][j], q[2].mul_add(s_al[2][j], q[3] * s_al[3][j])));
+            sig[i][j] - qs * inv_v
+        });
+        let mut fk = [F4::ZERO; 7];
+        for k in 0..6 {
+            fk[k] = st[0].mul_add(g[k][0], st[1].mul_add(g[k][1], st[2] * g[k][2])) * 0.125;
         }
-    }
-
-    // Hourglass control.
-    let mut hg_work = F4::ZERO;
-    let kdt = batch.hg_k * dt;
-    for (al, g) in GAMMA.iter().enumerate() {
-        let mut sx = [F4::ZERO; 3];
-        for i in 0..3 {
-            for c in 0..8 {
-                sx[i] = if g[c] > 0.0 {
-                    sx[i] + x[i][c]
-                } else {
-                    sx[i] - x[i][c]
-                };
-            }
-            sx[i] = sx[i] * inv_v;
+        for al in 0..4 {
+            fk[3 + al] += q[al];
         }
-        let mut gam = [F4::ZERO; 8];
-        for a in 0..8 {
-            let proj = b[0][a].mul_add(sx[0], b[1][a].mul_add(sx[1], b[2][a] * sx[2]));
-            gam[a] = F4::splat(g[a]) - proj;
-        }
-        for i in 0..3 {
-            let mut q = F4::ZERO;
-            for a in 0..8 {
-                q = v[i][a].mul_add(gam[a], q);
-            }
-            let old = batch.hg[i][al];
-            let upd = kdt.mul_add(q, old);
-            batch.hg[i][al] = upd;
-            hg_work = ((old + upd) * half_dt).mul_add(q, hg_work);
-            for a in 0..8 {
-                f[i][a] = upd.mul_add(gam[a], f[i][a]);
-            }
-        }
+        f[i] = expand(&fk);
     }
 
     let e = HexEnergy {
@@ -533,5 +589,80 @@ mod tests {
             assert!((f[0][a].0[0] - q * GAMMA[0][a]).abs() < 1e-9);
         }
         assert!((e.hourglass - 0.5 * q * 8.0 * 1e-6).abs() < 1e-12);
+    }
+
+    #[test]
+    fn coefficients_use_the_hourglass_base_vectors() {
+        let p: [F4; 8] = std::array::from_fn(|a| F4::splat((a * a) as f64 + 0.5 * a as f64));
+        let c = coefficients(&p);
+        for (al, g) in GAMMA.iter().enumerate() {
+            let dot: f64 = (0..8).map(|a| g[a] * p[a].0[0]).sum();
+            assert!((c[3 + al].0[0] - dot / 8.0).abs() < 1e-14);
+        }
+        for k in 0..3 {
+            let dot: f64 = (0..8).map(|a| XI[a][k] * p[a].0[0]).sum();
+            assert!((c[k].0[0] - dot / 8.0).abs() < 1e-14);
+        }
+        // expand is the transpose: sum_a f_a p_a = sum_k F_k (8 c_k).
+        let fk: [F4; 7] = std::array::from_fn(|k| F4::splat(1.0 + k as f64));
+        let f = expand(&fk);
+        let lhs: f64 = (0..8).map(|a| f[a].0[0] * p[a].0[0]).sum();
+        let rhs: f64 = (0..7).map(|k| fk[k].0[0] * 8.0 * c[k].0[0]).sum();
+        assert!((lhs - rhs).abs() < 1e-10);
+    }
+
+    #[test]
+    fn forces_match_the_flanagan_belytschko_formulas() {
+        // Reference: gamma = Gamma - (1/V)(Gamma . x_i) b_i, q = v . gamma,
+        // f = sigma b + Q gamma, on a distorted element with arbitrary
+        // velocities and a prior stress and hourglass state.
+        let x = distorted();
+        let mat = Elastic::new(Isotropic { e: 30e9, nu: 0.2, density: 2400.0 });
+        let mut bt = batch_of(&x, 3e8);
+        bt.stress = [1e6, -2e6, 0.5e6, 0.3e6, -0.1e6, 0.2e6].map(F4::splat);
+        for i in 0..3 {
+            for al in 0..4 {
+                bt.hg[i][al] = F4::splat(100.0 * (i as f64 + 1.0) - 37.0 * al as f64);
+            }
+        }
+        let v: Vec<[f64; 3]> = (0..8)
+            .map(|a| [0.1 * (a as f64).sin(), 0.2 * (a as f64 * 1.3).cos(), -0.05 * a as f64])
+            .collect();
+        let dt = 1e-6;
+        let q0 = bt.hg;
+        let (b, vol) = gradients(&lanes(&x));
+        let vol = vol.0[0];
+        let (f, _) = step(&mut bt, &mat, &x, &v, dt);
+        let mut gam = [[0.0; 8]; 4];
+        for al in 0..4 {
+            for a in 0..8 {
+                let mut proj = 0.0;
+                for i in 0..3 {
+                    let gx: f64 = (0..8).map(|c| GAMMA[al][c] * x[c][i]).sum();
+                    proj += b[i][a].0[0] * gx;
+                }
+                gam[al][a] = GAMMA[al][a] - proj / vol;
+            }
+        }
+        let s = bt.stress.map(|c| c.0[0]);
+        let sig = [[s[0], s[3], s[5]], [s[3], s[1], s[4]], [s[5], s[4], s[2]]];
+        for i in 0..3 {
+            let mut q_new = [0.0; 4];
+            for al in 0..4 {
+                let q: f64 = (0..8).map(|a| v[a][i] * gam[al][a]).sum();
+                q_new[al] = q0[i][al].0[0] + 3e8 * dt * q;
+                assert!((bt.hg[i][al].0[0] - q_new[al]).abs() < 1e-9 * q_new[al].abs().max(1.0));
+            }
+            for a in 0..8 {
+                let mut r = 0.0;
+                for j in 0..3 {
+                    r += sig[i][j] * b[j][a].0[0];
+                }
+                for al in 0..4 {
+                    r += q_new[al] * gam[al][a];
+                }
+                assert!((f[i][a].0[0] - r).abs() < 1e-9 * r.abs().max(1.0), "f[{i}][{a}]");
+            }
+        }
     }
 }
