@@ -463,9 +463,10 @@ impl<M: SolidMaterial, B: BarMaterial> Solver<M, B> {
         t
     }
 
-    /// The axial force the base resists with (compression positive), N.
+    /// The axial force at the base, signed as the load at the top (equal
+    /// to it in equilibrium), N.
     pub fn base_axial(&self) -> f64 {
-        self.base.clone().map(|n| self.f_int[n][2]).sum()
+        -self.base.clone().map(|n| self.f_int[n][2]).sum::<f64>()
     }
 }
 
