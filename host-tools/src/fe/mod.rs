@@ -11,3 +11,4 @@ pub mod model;
 pub mod quasi_static;
 pub mod rebar;
 pub mod simd;
+pub mod specimen;
