@@ -1,5 +1,6 @@
 //! The `hyst` command line: one module per verb.
 
+pub mod fe;
 pub mod params;
 
 use clap::{Parser, Subcommand};
@@ -18,11 +19,14 @@ pub struct Cli {
 pub enum Command {
     /// List the parameters of a model.
     Params(params::ParamsArgs),
+    /// Explicit finite-element analysis of an RC column under twist.
+    Fe(fe::FeArgs),
 }
 
 /// Runs a parsed command line.
 pub fn run(cli: Cli) -> anyhow::Result<()> {
     match cli.command {
         Command::Params(a) => params::run(a),
+        Command::Fe(a) => fe::run_fe(a),
     }
 }

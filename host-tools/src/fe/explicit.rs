@@ -21,6 +21,7 @@ use super::hex8::{self, HexEnergy};
 use super::history::History;
 use super::material::{BarMaterial, SolidMaterial};
 use super::model::Model;
+use super::simd::LANES;
 use rayon::prelude::*;
 
 /// Batches per parallel work item.
@@ -168,7 +169,7 @@ impl<M: SolidMaterial, B: BarMaterial> Solver<M, B> {
             .map(|&i| sub(x[i as usize], centre))
             .collect();
         let mass = top_nodes.iter().map(|&i| model.mass[i as usize]).sum();
-        let n_el_slots = model.batches.len() * 8 * hex8_lanes();
+        let n_el_slots = model.batches.len() * 8 * LANES;
         let nt = model.embedding.trusses.len();
         let np = model.embedding.points.len();
         let pool = rayon::ThreadPoolBuilder::new()
@@ -230,7 +231,7 @@ impl<M: SolidMaterial, B: BarMaterial> Solver<M, B> {
             ..
         } = self;
         let (x, v) = (&*x, &*v);
-        let (de, dtr, ke_free) = pool.install(|| {
+        let (de, dtr, mass) = pool.install(|| {
             // Embedded points follow their hosts.
             let points = &model.embedding.points;
             px.par_iter_mut()
@@ -254,7 +255,7 @@ impl<M: SolidMaterial, B: BarMaterial> Solver<M, B> {
 
             // Hexahedra.
             let mat = &model.solid;
-            let lanes = hex8_lanes();
+            let lanes = LANES;
             model
                 .batches
                 .par_chunks_mut(BATCH_CHUNK)
@@ -336,7 +337,6 @@ impl<M: SolidMaterial, B: BarMaterial> Solver<M, B> {
             let dtr: f64 = truss_e.iter().sum();
             (de, dtr, mass)
         });
-        let mass = ke_free;
         let f_int = &*f_int;
         let (xm, vm) = (&mut self.x, &mut self.v);
         pool.install(|| {
@@ -451,6 +451,12 @@ impl<M: SolidMaterial, B: BarMaterial> Solver<M, B> {
         (ke, work)
     }
 
+    /// Current positions of the embedded bar points (as of the last
+    /// step's start), m.
+    pub fn bar_points(&self) -> &[[f64; 3]] {
+        &self.px
+    }
+
     /// The torque the fixed base resists with (equal to the applied torque
     /// in equilibrium), N m.
     pub fn base_torque(&self) -> f64 {
@@ -468,10 +474,6 @@ impl<M: SolidMaterial, B: BarMaterial> Solver<M, B> {
     pub fn base_axial(&self) -> f64 {
         -self.base.clone().map(|n| self.f_int[n][2]).sum::<f64>()
     }
-}
-
-fn hex8_lanes() -> usize {
-    super::simd::LANES
 }
 
 fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
