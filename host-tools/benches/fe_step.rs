@@ -16,7 +16,14 @@ fn solver(threads: usize) -> Solver<Elastic, ElasticBar> {
         nu: 0.2,
         density: 2400.0,
     });
-    let model = Model::new(mesh, mat, &[], vec![], Embedding::default(), Settings::default());
+    let model = Model::new(
+        mesh,
+        mat,
+        &[],
+        vec![],
+        Embedding::default(),
+        Settings::default(),
+    );
     let mut controls: [Control; 6] = std::array::from_fn(|_| Control::free());
     controls[5] = Control::Motion(hyst::fe::history::History::new(
         vec![(0.0, 0.0), (1e-3, 1e-4)],

@@ -34,7 +34,10 @@ fn main() {
         Settings::default(),
     );
     let mut controls: [Control; 6] = std::array::from_fn(|_| Control::free());
-    controls[5] = Control::Motion(History::new(vec![(0.0, 0.0), (1e-3, 1e-4)], Interpolation::Linear));
+    controls[5] = Control::Motion(History::new(
+        vec![(0.0, 0.0), (1e-3, 1e-4)],
+        Interpolation::Linear,
+    ));
     let mut s = Solver::new(model, controls, threads);
     let start = std::time::Instant::now();
     for _ in 0..steps {

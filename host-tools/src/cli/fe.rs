@@ -82,7 +82,12 @@ pub fn run_fe(args: FeArgs) -> anyhow::Result<()> {
 }
 
 fn print_summary(s: &Summary) {
-    println!("{} ({} materials){}", s.specimen, s.materials, if s.interrupted { ", INTERRUPTED" } else { "" });
+    println!(
+        "{} ({} materials){}",
+        s.specimen,
+        s.materials,
+        if s.interrupted { ", INTERRUPTED" } else { "" }
+    );
     println!(
         "  mesh: {} hexahedra, {} trusses, {} nodes at {} mm (aspect <= {:.2})",
         s.elements, s.trusses, s.nodes, s.element_size_mm, s.mesh.max_aspect
@@ -91,7 +96,10 @@ fn print_summary(s: &Summary) {
         "  time step {:.3e} s (hexahedra {:.3e}, trusses {:.3e}); added mass {:.1} kg ({:.2}%)",
         s.time_step.dt, s.time_step.hex, s.time_step.truss, s.added_mass_kg, s.added_mass_percent
     );
-    println!("  {} steps to t = {:.4e} s on {} threads in {:.1} s ({:.0} ns per element-step)", s.steps, s.time_s, s.threads, s.wall_s, s.ns_per_element_step);
+    println!(
+        "  {} steps to t = {:.4e} s on {} threads in {:.1} s ({:.0} ns per element-step)",
+        s.steps, s.time_s, s.threads, s.wall_s, s.ns_per_element_step
+    );
     match s.initial_stiffness {
         Some(k) => println!(
             "  initial stiffness {:.0} kN m/rad ({:.4} x Saint-Venant GJ/L = {:.0})",
@@ -118,7 +126,11 @@ fn print_summary(s: &Summary) {
             println!("  wrote {}", o.display());
         }
     }
-    let vtk = s.outputs.iter().filter(|o| o.extension().is_some_and(|e| e == "vtk")).count();
+    let vtk = s
+        .outputs
+        .iter()
+        .filter(|o| o.extension().is_some_and(|e| e == "vtk"))
+        .count();
     if vtk > 0 {
         println!("  wrote {vtk} VTK files");
     }

@@ -32,6 +32,7 @@ struct Ramp {
 /// Drives degree of freedom `k` of the top by a smooth step to `amp` over
 /// `ramp` seconds (then holds for a fifth of that); every other degree of
 /// freedom is free.
+#[allow(clippy::too_many_arguments)]
 fn ramp(
     mesh: Mesh,
     mat: Isotropic,
@@ -107,7 +108,16 @@ fn assert_quasi_static(v: &Verdict) {
 fn circular_column_torsion_matches_saint_venant() {
     let (r, l, h) = (0.305, 0.25, 0.025);
     let mesh = Mesh::extrude(Section::circle(r, h), l, h);
-    let out = ramp(mesh, CONCRETE, &[], Settings::default(), dof::RZ, 1e-3, 0.01, 2);
+    let out = ramp(
+        mesh,
+        CONCRETE,
+        &[],
+        Settings::default(),
+        dof::RZ,
+        1e-3,
+        0.01,
+        2,
+    );
     let ratio = out.stiffness / circle_ksv(r, l);
     eprintln!("circle 25 mm: K/(GJ/L) = {ratio:.5}, {:?}", out.verdict);
     assert!((ratio - 1.0).abs() < 0.01, "K / (GJ/L) = {ratio}");
@@ -125,7 +135,16 @@ fn square_column_torsion_is_saint_venant_stiffened_by_warping_restraint() {
     let (b, l, h) = (0.4, 1.35, 0.025);
     let k_sv = CONCRETE.shear_modulus() * square_torsion_constant(b) / l;
     let mesh = Mesh::extrude(Section::square(b, h), l, h);
-    let out = ramp(mesh, CONCRETE, &[], Settings::default(), dof::RZ, 1e-3, 0.02, 2);
+    let out = ramp(
+        mesh,
+        CONCRETE,
+        &[],
+        Settings::default(),
+        dof::RZ,
+        1e-3,
+        0.02,
+        2,
+    );
     let ratio = out.stiffness / k_sv;
     eprintln!("square 25 mm: K/K_SV = {ratio:.5}, {:?}", out.verdict);
     assert!((1.0..1.02).contains(&ratio), "K / K_SV = {ratio}");
@@ -139,7 +158,10 @@ fn axial_stiffness_with_embedded_bars_is_the_transformed_section() {
     // exact and K = (Ec Ag + Es As) / L (bars embedded without removing
     // concrete, as ABAQUS' embedded elements).
     let (b, l, h) = (0.2, 0.4, 0.025);
-    let mat = Isotropic { nu: 0.0, ..CONCRETE };
+    let mat = Isotropic {
+        nu: 0.0,
+        ..CONCRETE
+    };
     let d: f64 = 0.016;
     let area = PI * d * d / 4.0;
     let c = b / 2.0 - 0.04;
@@ -152,12 +174,32 @@ fn axial_stiffness_with_embedded_bars_is_the_transformed_section() {
             .collect(),
     };
     let mesh = Mesh::extrude(Section::square(b, h), l, h);
-    let out = ramp(mesh, mat, &[bars], Settings::default(), dof::UZ, -2e-5, 0.004, 2);
+    let out = ramp(
+        mesh,
+        mat,
+        &[bars],
+        Settings::default(),
+        dof::UZ,
+        -2e-5,
+        0.004,
+        2,
+    );
     let k = (mat.e * b * b + 200e9 * 4.0 * area) / l;
-    eprintln!("axial: K/K_exact = {:.6}, base/top {:.6}", out.stiffness / k, out.base_ratio);
-    assert!((out.stiffness / k - 1.0).abs() < 2e-3, "{}", out.stiffness / k);
+    eprintln!(
+        "axial: K/K_exact = {:.6}, base/top {:.6}",
+        out.stiffness / k,
+        out.base_ratio
+    );
+    assert!(
+        (out.stiffness / k - 1.0).abs() < 2e-3,
+        "{}",
+        out.stiffness / k
+    );
     let strain = out.solver.model.truss_state[0].strain;
-    assert!((strain / (-2e-5 / l) - 1.0).abs() < 2e-3, "bar strain {strain}");
+    assert!(
+        (strain / (-2e-5 / l) - 1.0).abs() < 2e-3,
+        "bar strain {strain}"
+    );
     assert!((out.base_ratio - 1.0).abs() < 2e-3);
     assert_quasi_static(&out.verdict);
 }
@@ -176,7 +218,16 @@ fn cantilever_bending_matches_timoshenko() {
     let kappa = 10.0 * (1.0 + nu) / (12.0 + 11.0 * nu);
     let k = 1.0 / (l.powi(3) / (3.0 * e * i) + l / (kappa * CONCRETE.shear_modulus() * b * b));
     let mesh = Mesh::extrude(Section::square(b, h), l, h);
-    let out = ramp(mesh, CONCRETE, &[], Settings::default(), dof::UX, 1e-4, 0.08, 2);
+    let out = ramp(
+        mesh,
+        CONCRETE,
+        &[],
+        Settings::default(),
+        dof::UX,
+        1e-4,
+        0.08,
+        2,
+    );
     let ratio = out.stiffness / k;
     eprintln!("cantilever: K/K_Timoshenko = {ratio:.5}, {:?}", out.verdict);
     assert!((ratio - 1.0).abs() < 0.02, "K / K_Timoshenko = {ratio}");
@@ -207,11 +258,19 @@ fn patch_test_linear_field_gives_uniform_stress_and_no_interior_force() {
         &[],
         Vec::<ElasticBar>::new(),
         Default::default(),
-        Settings { bulk_linear: 0.0, bulk_quadratic: 0.0, ..Settings::default() },
+        Settings {
+            bulk_linear: 0.0,
+            bulk_quadratic: 0.0,
+            ..Settings::default()
+        },
     );
     let dt = model.dt();
     let mut s = Solver::new(model, std::array::from_fn(|_| Control::free()), 1);
-    let a = [[1e-4, 2e-5, -3e-5], [4e-5, -2e-4, 1e-5], [-1e-5, 3e-5, 5e-5]];
+    let a = [
+        [1e-4, 2e-5, -3e-5],
+        [4e-5, -2e-4, 1e-5],
+        [-1e-5, 3e-5, 5e-5],
+    ];
     for n in 0..s.v.len() {
         let x = s.x[n];
         s.v[n] = std::array::from_fn(|i| (a[i][0] * x[0] + a[i][1] * x[1] + a[i][2] * x[2]) / dt);
@@ -231,7 +290,11 @@ fn patch_test_linear_field_gives_uniform_stress_and_no_interior_force() {
         for lane in 0..bt.len {
             for c in 0..6 {
                 let got = bt.stress[c].0[lane];
-                assert!((got - want[c]).abs() < 1e-9 * 1e6, "component {c}: {got} vs {}", want[c]);
+                assert!(
+                    (got - want[c]).abs() < 1e-9 * 1e6,
+                    "component {c}: {got} vs {}",
+                    want[c]
+                );
             }
             for al in 0..4 {
                 for i in 0..3 {
@@ -240,10 +303,16 @@ fn patch_test_linear_field_gives_uniform_stress_and_no_interior_force() {
             }
         }
     }
-    let scale = s.f_int.iter().fold(0.0f64, |m, f| m.max(f[0].abs().max(f[1].abs()).max(f[2].abs())));
+    let scale = s.f_int.iter().fold(0.0f64, |m, f| {
+        m.max(f[0].abs().max(f[1].abs()).max(f[2].abs()))
+    });
     for &n in &interior {
         for i in 0..3 {
-            assert!(s.f_int[n][i].abs() < 1e-10 * scale, "node {n}: {:?}", s.f_int[n]);
+            assert!(
+                s.f_int[n][i].abs() < 1e-10 * scale,
+                "node {n}: {:?}",
+                s.f_int[n]
+            );
         }
     }
 }
@@ -256,7 +325,16 @@ fn torsion_converges_with_mesh_refinement() {
     let mut errors = Vec::new();
     for h in [0.05, 0.025, 0.0125] {
         let mesh = Mesh::extrude(Section::circle(r, h), l, h);
-        let out = ramp(mesh, CONCRETE, &[], Settings::default(), dof::RZ, 1e-3, 0.005, 2);
+        let out = ramp(
+            mesh,
+            CONCRETE,
+            &[],
+            Settings::default(),
+            dof::RZ,
+            1e-3,
+            0.005,
+            2,
+        );
         let err = out.stiffness / circle_ksv(r, l) - 1.0;
         eprintln!(
             "h = {:.4} m: {} elements, K/(GJ/L) - 1 = {err:+.5}, hourglass share {:.4}",
@@ -294,11 +372,30 @@ fn one_and_two_threads_give_bit_identical_results() {
     ];
     let run = |threads| {
         let emb = embed(&mesh, &sets).expect("inside");
-        let steel = vec![ElasticBar { e: 200e9, density: 7800.0 }; 2];
-        let model = Model::new(mesh.clone(), Elastic::new(CONCRETE), &sets, steel, emb, Settings::default());
+        let steel = vec![
+            ElasticBar {
+                e: 200e9,
+                density: 7800.0
+            };
+            2
+        ];
+        let model = Model::new(
+            mesh.clone(),
+            Elastic::new(CONCRETE),
+            &sets,
+            steel,
+            emb,
+            Settings::default(),
+        );
         let mut controls: [Control; 6] = std::array::from_fn(|_| Control::free());
-        controls[dof::RZ] = Control::Motion(History::new(vec![(0.0, 0.0), (2e-3, 1e-3)], Interpolation::SmoothStep));
-        controls[dof::UZ] = Control::Force(History::new(vec![(0.0, 0.0), (1e-3, -1e5)], Interpolation::SmoothStep));
+        controls[dof::RZ] = Control::Motion(History::new(
+            vec![(0.0, 0.0), (2e-3, 1e-3)],
+            Interpolation::SmoothStep,
+        ));
+        controls[dof::UZ] = Control::Force(History::new(
+            vec![(0.0, 0.0), (1e-3, -1e5)],
+            Interpolation::SmoothStep,
+        ));
         let mut s = Solver::new(model, controls, threads);
         for _ in 0..300 {
             s.step();
@@ -307,11 +404,18 @@ fn one_and_two_threads_give_bit_identical_results() {
     };
     let (a, b) = (run(1), run(2));
     assert!(a.energy.strain > 0.0);
-    let bits = |v: &[[f64; 3]]| v.iter().flat_map(|p| p.map(f64::to_bits)).collect::<Vec<_>>();
+    let bits = |v: &[[f64; 3]]| {
+        v.iter()
+            .flat_map(|p| p.map(f64::to_bits))
+            .collect::<Vec<_>>()
+    };
     assert_eq!(bits(&a.x), bits(&b.x));
     assert_eq!(bits(&a.v), bits(&b.v));
     assert_eq!(a.energy.strain.to_bits(), b.energy.strain.to_bits());
-    assert_eq!(a.top.reaction[dof::RZ].to_bits(), b.top.reaction[dof::RZ].to_bits());
+    assert_eq!(
+        a.top.reaction[dof::RZ].to_bits(),
+        b.top.reaction[dof::RZ].to_bits()
+    );
     for (x, y) in a.model.truss_state.iter().zip(&b.model.truss_state) {
         assert_eq!(x.stress.to_bits(), y.stress.to_bits());
     }

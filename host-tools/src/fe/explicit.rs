@@ -175,7 +175,12 @@ impl<M: SolidMaterial, B: BarMaterial> Solver<M, B> {
         let pool = rayon::ThreadPoolBuilder::new()
             .num_threads(threads.max(1))
             .build()
-            .unwrap_or_else(|_| rayon::ThreadPoolBuilder::new().num_threads(1).build().unwrap_or_else(|e| panic!("no thread pool: {e}")));
+            .unwrap_or_else(|_| {
+                rayon::ThreadPoolBuilder::new()
+                    .num_threads(1)
+                    .build()
+                    .unwrap_or_else(|e| panic!("no thread pool: {e}"))
+            });
         Solver {
             hex_f: vec![[0.0; 3]; n_el_slots],
             hex_e: vec![HexEnergy::default(); model.batches.len().div_ceil(BATCH_CHUNK)],
@@ -366,7 +371,11 @@ impl<M: SolidMaterial, B: BarMaterial> Solver<M, B> {
                         ];
                         acc += 0.5 * mass[n] * dot(avg, avg);
                         *vn = new;
-                        *xn = [xn[0] + dt * new[0], xn[1] + dt * new[1], xn[2] + dt * new[2]];
+                        *xn = [
+                            xn[0] + dt * new[0],
+                            xn[1] + dt * new[1],
+                            xn[2] + dt * new[2],
+                        ];
                     }
                     *ke = acc;
                 });
@@ -432,7 +441,11 @@ impl<M: SolidMaterial, B: BarMaterial> Solver<M, B> {
         for (&n, arm) in top.nodes.iter().zip(&top.arms) {
             let n = n as usize;
             let r = matvec(top.rot, *arm);
-            let xn = [top.centre[0] + r[0], top.centre[1] + r[1], top.centre[2] + r[2]];
+            let xn = [
+                top.centre[0] + r[0],
+                top.centre[1] + r[1],
+                top.centre[2] + r[2],
+            ];
             let old = self.v[n];
             let new = [
                 (xn[0] - self.x[n][0]) / dt,
@@ -516,8 +529,20 @@ fn rotation(w: [f64; 3]) -> [[f64; 3]; 3] {
     let (s, c) = th.sin_cos();
     let t = 1.0 - c;
     [
-        [c + t * k[0] * k[0], t * k[0] * k[1] - s * k[2], t * k[0] * k[2] + s * k[1]],
-        [t * k[1] * k[0] + s * k[2], c + t * k[1] * k[1], t * k[1] * k[2] - s * k[0]],
-        [t * k[2] * k[0] - s * k[1], t * k[2] * k[1] + s * k[0], c + t * k[2] * k[2]],
+        [
+            c + t * k[0] * k[0],
+            t * k[0] * k[1] - s * k[2],
+            t * k[0] * k[2] + s * k[1],
+        ],
+        [
+            t * k[1] * k[0] + s * k[2],
+            c + t * k[1] * k[1],
+            t * k[1] * k[2] - s * k[0],
+        ],
+        [
+            t * k[2] * k[0] - s * k[1],
+            t * k[2] * k[1] + s * k[0],
+            c + t * k[2] * k[2],
+        ],
     ]
 }

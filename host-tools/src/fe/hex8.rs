@@ -136,7 +136,11 @@ fn lin(a: V3, fa: f64, b: V3, fb: f64) -> V3 {
 /// gradient of Flanagan and Belytschko (1981) without forming it per node.
 #[inline(always)]
 fn geometry(x: &[[F4; 8]; 3]) -> ([V3; 7], [V3; 6], F4) {
-    let cx = [coefficients(&x[0]), coefficients(&x[1]), coefficients(&x[2])];
+    let cx = [
+        coefficients(&x[0]),
+        coefficients(&x[1]),
+        coefficients(&x[2]),
+    ];
     let c: [V3; 7] = std::array::from_fn(|k| [cx[0][k], cx[1][k], cx[2][k]]);
     let (e1, e2, e3, h1, h2, h3) = (c[0], c[1], c[2], c[3], c[4], c[5]);
     let t = 8.0 / 3.0;
@@ -240,7 +244,11 @@ pub fn step<M: SolidMaterial>(
     let v = gather(&batch.nodes, v_all);
     let (cx, g, vol) = geometry(&x);
     let inv_v = F4::splat(1.0) / vol;
-    let vc = [coefficients(&v[0]), coefficients(&v[1]), coefficients(&v[2])];
+    let vc = [
+        coefficients(&v[0]),
+        coefficients(&v[1]),
+        coefficients(&v[2]),
+    ];
 
     // Velocity gradient L_ij = (1/V) sum_a v_ia b_ja = (1/V) sum_k vc_ki G_kj.
     let mut l = [[F4::ZERO; 3]; 3];
@@ -312,7 +320,8 @@ pub fn step<M: SolidMaterial>(
     let s_al: [V3; 4] = std::array::from_fn(|al| std::array::from_fn(|j| cx[3 + al][j] * 8.0));
     for i in 0..3 {
         for al in 0..4 {
-            let proj = s_al[al][0].mul_add(l[i][0], s_al[al][1].mul_add(l[i][1], s_al[al][2] * l[i][2]));
+            let proj =
+                s_al[al][0].mul_add(l[i][0], s_al[al][1].mul_add(l[i][1], s_al[al][2] * l[i][2]));
             let q = vc[i][3 + al] * 8.0 - proj;
             let old = batch.hg[i][al];
             let upd = kdt.mul_add(q, old);
@@ -332,7 +341,10 @@ pub fn step<M: SolidMaterial>(
     for i in 0..3 {
         let q = &batch.hg[i];
         let st: [F4; 3] = std::array::from_fn(|j| {
-            let qs = q[0].mul_add(s_al[0][j], q[1].mul_add(s_al[1][j], q[2].mul_add(s_al[2][j], q[3] * s_al[3][j])));
+            let qs = q[0].mul_add(
+                s_al[0][j],
+                q[1].mul_add(s_al[1][j], q[2].mul_add(s_al[2][j], q[3] * s_al[3][j])),
+            );
             sig[i][j] - qs * inv_v
         });
         let mut fk = [F4::ZERO; 7];
@@ -430,7 +442,16 @@ mod tests {
     fn volume_gauss(x: &[[f64; 3]; 8]) -> f64 {
         let g = 1.0 / 3f64.sqrt();
         let mut vol = 0.0;
-        for p in [[-g, -g, -g], [g, -g, -g], [g, g, -g], [-g, g, -g], [-g, -g, g], [g, -g, g], [g, g, g], [-g, g, g]] {
+        for p in [
+            [-g, -g, -g],
+            [g, -g, -g],
+            [g, g, -g],
+            [-g, g, -g],
+            [-g, -g, g],
+            [g, -g, g],
+            [g, g, g],
+            [-g, g, g],
+        ] {
             let mut j = [[0.0; 3]; 3];
             for a in 0..8 {
                 let dn = [
@@ -467,7 +488,12 @@ mod tests {
         let x = distorted();
         let (b, v) = gradients(&lanes(&x));
         let v_exact = volume_gauss(&x);
-        assert!((v.0[0] - v_exact).abs() < 1e-14 * v_exact, "{} {}", v.0[0], v_exact);
+        assert!(
+            (v.0[0] - v_exact).abs() < 1e-14 * v_exact,
+            "{} {}",
+            v.0[0],
+            v_exact
+        );
         let h = 1e-6;
         for a in 0..8 {
             for i in 0..3 {
@@ -476,7 +502,11 @@ mod tests {
                 xp[a][i] += h;
                 xm[a][i] -= h;
                 let fd = (volume_gauss(&xp) - volume_gauss(&xm)) / (2.0 * h);
-                assert!((b[i][a].0[0] - fd).abs() < 1e-8, "b[{i}][{a}] {} vs {fd}", b[i][a].0[0]);
+                assert!(
+                    (b[i][a].0[0] - fd).abs() < 1e-8,
+                    "b[{i}][{a}] {} vs {fd}",
+                    b[i][a].0[0]
+                );
             }
         }
     }
@@ -537,7 +567,11 @@ mod tests {
         // A stress state rotated rigidly stays a rotated stress state with
         // the same invariants, and creates no hourglass force.
         let x = distorted();
-        let mat = Elastic::new(Isotropic { e: 30e9, nu: 0.2, density: 2400.0 });
+        let mat = Elastic::new(Isotropic {
+            e: 30e9,
+            nu: 0.2,
+            density: 2400.0,
+        });
         let mut bt = batch_of(&x, 1e9);
         bt.stress[2] = F4::splat(-2e6);
         let w = 0.01;
@@ -556,7 +590,11 @@ mod tests {
         // sigma_xz under a spin about z turns into sigma_yz: d(sigma_yz) =
         // w dt sigma_xz (Jaumann rate).
         let x = distorted();
-        let mat = Elastic::new(Isotropic { e: 30e9, nu: 0.2, density: 2400.0 });
+        let mat = Elastic::new(Isotropic {
+            e: 30e9,
+            nu: 0.2,
+            density: 2400.0,
+        });
         let mut bt = batch_of(&x, 0.0);
         bt.stress[5] = F4::splat(1e6);
         let w = 0.02;
@@ -575,7 +613,11 @@ mod tests {
                 x[a][i] = 0.5 * XI[a][i];
             }
         }
-        let mat = Elastic::new(Isotropic { e: 30e9, nu: 0.2, density: 2400.0 });
+        let mat = Elastic::new(Isotropic {
+            e: 30e9,
+            nu: 0.2,
+            density: 2400.0,
+        });
         let mut bt = batch_of(&x, 1e8);
         // u_x = c eta zeta: no mean strain, pure hourglass.
         let v: Vec<[f64; 3]> = (0..8).map(|a| [GAMMA[0][a], 0.0, 0.0]).collect();
@@ -617,7 +659,11 @@ mod tests {
         // f = sigma b + Q gamma, on a distorted element with arbitrary
         // velocities and a prior stress and hourglass state.
         let x = distorted();
-        let mat = Elastic::new(Isotropic { e: 30e9, nu: 0.2, density: 2400.0 });
+        let mat = Elastic::new(Isotropic {
+            e: 30e9,
+            nu: 0.2,
+            density: 2400.0,
+        });
         let mut bt = batch_of(&x, 3e8);
         bt.stress = [1e6, -2e6, 0.5e6, 0.3e6, -0.1e6, 0.2e6].map(F4::splat);
         for i in 0..3 {
@@ -626,7 +672,13 @@ mod tests {
             }
         }
         let v: Vec<[f64; 3]> = (0..8)
-            .map(|a| [0.1 * (a as f64).sin(), 0.2 * (a as f64 * 1.3).cos(), -0.05 * a as f64])
+            .map(|a| {
+                [
+                    0.1 * (a as f64).sin(),
+                    0.2 * (a as f64 * 1.3).cos(),
+                    -0.05 * a as f64,
+                ]
+            })
             .collect();
         let dt = 1e-6;
         let q0 = bt.hg;
@@ -661,7 +713,10 @@ mod tests {
                 for al in 0..4 {
                     r += q_new[al] * gam[al][a];
                 }
-                assert!((f[i][a].0[0] - r).abs() < 1e-9 * r.abs().max(1.0), "f[{i}][{a}]");
+                assert!(
+                    (f[i][a].0[0] - r).abs() < 1e-9 * r.abs().max(1.0),
+                    "f[{i}][{a}]"
+                );
             }
         }
     }

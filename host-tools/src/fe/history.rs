@@ -84,7 +84,10 @@ mod tests {
 
     #[test]
     fn linear_table() {
-        let h = History::new(vec![(1.0, 0.0), (2.0, 1.0), (4.0, -1.0)], Interpolation::Linear);
+        let h = History::new(
+            vec![(1.0, 0.0), (2.0, 1.0), (4.0, -1.0)],
+            Interpolation::Linear,
+        );
         assert_eq!(h.value(1.5), 0.5);
         assert_eq!(h.value(3.0), 0.0);
         assert_eq!(h.end(), 4.0);

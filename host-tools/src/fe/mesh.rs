@@ -53,7 +53,8 @@ impl Section {
                 let s = Self::o_grid(radius, n, a_frac, bulge);
                 let qual = s.quality(h);
                 let q = qual.max_aspect;
-                let angles_ok = qual.min_corner_angle_deg >= 50.0 && qual.max_corner_angle_deg <= 130.0;
+                let angles_ok =
+                    qual.min_corner_angle_deg >= 50.0 && qual.max_corner_angle_deg <= 130.0;
                 if angles_ok && s.quads_positive() && best.as_ref().is_none_or(|(bq, _)| q < *bq) {
                     best = Some((q, s));
                 }
@@ -190,7 +191,9 @@ impl Section {
                 let lf = f[0].hypot(f[1]);
                 lo = lo.min(le);
                 hi = hi.max(le);
-                let ang = ((e[0] * f[0] + e[1] * f[1]) / (le * lf)).clamp(-1.0, 1.0).acos();
+                let ang = ((e[0] * f[0] + e[1] * f[1]) / (le * lf))
+                    .clamp(-1.0, 1.0)
+                    .acos();
                 q.min_corner_angle_deg = q.min_corner_angle_deg.min(ang.to_degrees());
                 q.max_corner_angle_deg = q.max_corner_angle_deg.max(ang.to_degrees());
             }
@@ -207,8 +210,12 @@ impl Section {
         const TOL: f64 = 1e-9;
         for (k, q) in self.quads.iter().enumerate() {
             let c: Vec<[f64; 2]> = q.iter().map(|&i| self.nodes[i as usize]).collect();
-            let (lo_x, hi_x) = c.iter().fold((f64::MAX, f64::MIN), |a, v| (a.0.min(v[0]), a.1.max(v[0])));
-            let (lo_y, hi_y) = c.iter().fold((f64::MAX, f64::MIN), |a, v| (a.0.min(v[1]), a.1.max(v[1])));
+            let (lo_x, hi_x) = c
+                .iter()
+                .fold((f64::MAX, f64::MIN), |a, v| (a.0.min(v[0]), a.1.max(v[0])));
+            let (lo_y, hi_y) = c
+                .iter()
+                .fold((f64::MAX, f64::MIN), |a, v| (a.0.min(v[1]), a.1.max(v[1])));
             let pad = 1e-9 * (hi_x - lo_x + hi_y - lo_y);
             if p[0] < lo_x - pad || p[0] > hi_x + pad || p[1] < lo_y - pad || p[1] > hi_y + pad {
                 continue;
@@ -376,24 +383,49 @@ mod tests {
 
     #[test]
     fn o_grid_covers_the_circle_with_near_unit_aspect() {
-        for (r, h) in [(0.305, 0.025), (0.15, 0.025), (0.305, 0.0125), (0.305, 0.05)] {
+        for (r, h) in [
+            (0.305, 0.025),
+            (0.15, 0.025),
+            (0.305, 0.0125),
+            (0.305, 0.05),
+        ] {
             let s = Section::circle(r, h);
             // The inscribed polygon with 4n sides loses (2 pi / 4n)^2 / 6 of
             // the area, to leading order.
-            let n4 = s.nodes.iter().filter(|p| (p[0].hypot(p[1]) - r).abs() < 1e-12).count() as f64;
+            let n4 = s
+                .nodes
+                .iter()
+                .filter(|p| (p[0].hypot(p[1]) - r).abs() < 1e-12)
+                .count() as f64;
             let poly = 0.5 * n4 * r * r * (2.0 * PI / n4).sin();
-            assert!((s.area() - poly).abs() < 1e-12 * poly, "{} {}", s.area(), poly);
+            assert!(
+                (s.area() - poly).abs() < 1e-12 * poly,
+                "{} {}",
+                s.area(),
+                poly
+            );
             let q = s.quality(h);
             assert!(q.max_aspect < 1.7, "r {r} h {h}: {q:?}");
-            assert!(q.min_edge > 0.6 * h && q.max_edge < 1.45 * h, "r {r} h {h}: {q:?}");
-            assert!(q.min_corner_angle_deg >= 50.0 && q.max_corner_angle_deg <= 130.0, "{q:?}");
+            assert!(
+                q.min_edge > 0.6 * h && q.max_edge < 1.45 * h,
+                "r {r} h {h}: {q:?}"
+            );
+            assert!(
+                q.min_corner_angle_deg >= 50.0 && q.max_corner_angle_deg <= 130.0,
+                "{q:?}"
+            );
         }
     }
 
     #[test]
     fn points_are_located_with_their_natural_coordinates() {
         let m = Mesh::extrude(Section::circle(0.3, 0.05), 0.6, 0.05);
-        for p in [[0.0, 0.0, 0.3], [0.21, -0.1, 0.01], [-0.25, 0.12, 0.6], [0.0, 0.298, 0.0]] {
+        for p in [
+            [0.0, 0.0, 0.3],
+            [0.21, -0.1, 0.01],
+            [-0.25, 0.12, 0.6],
+            [0.0, 0.298, 0.0],
+        ] {
             let (e, r) = m.locate(p).expect("inside");
             let n = super::super::hex8::shape(r);
             let mut x = [0.0; 3];

@@ -178,7 +178,11 @@ impl<M: SolidMaterial, B: BarMaterial> Model<M, B> {
                     mask.0[l] = 1.0;
                     let dt_e = len / c * visc;
                     dt_hex = dt_hex.min(dt_e);
-                    let scale = if dt_e < target { (target / dt_e).powi(2) } else { 1.0 };
+                    let scale = if dt_e < target {
+                        (target / dt_e).powi(2)
+                    } else {
+                        1.0
+                    };
                     dt_min = dt_min.min(dt_e * scale.sqrt());
                     let m = rho * vol;
                     physical += m;
@@ -208,7 +212,11 @@ impl<M: SolidMaterial, B: BarMaterial> Model<M, B> {
             let cs = (mat.modulus() / mat.density()).sqrt();
             let dt_e = t.length / cs;
             dt_truss = dt_truss.min(dt_e);
-            let scale = if dt_e < target { (target / dt_e).powi(2) } else { 1.0 };
+            let scale = if dt_e < target {
+                (target / dt_e).powi(2)
+            } else {
+                1.0
+            };
             dt_min = dt_min.min(dt_e * scale.sqrt());
             let m = mat.density() * t.area * t.length;
             physical += m;

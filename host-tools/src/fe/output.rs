@@ -148,7 +148,11 @@ pub fn resolve_stations<M: SolidMaterial, B: BarMaterial>(
                 .map(|(i, t)| {
                     let p = emb.positions[t.ends[0] as usize];
                     let q = emb.positions[t.ends[1] as usize];
-                    let m = [(p[0] + q[0]) / 2.0, (p[1] + q[1]) / 2.0, (p[2] + q[2]) / 2.0];
+                    let m = [
+                        (p[0] + q[0]) / 2.0,
+                        (p[1] + q[1]) / 2.0,
+                        (p[2] + q[2]) / 2.0,
+                    ];
                     let r = m[0].hypot(m[1]);
                     let mut da = (m[1].atan2(m[0]) - target).rem_euclid(std::f64::consts::TAU);
                     if da > std::f64::consts::PI {
@@ -165,7 +169,10 @@ pub fn resolve_stations<M: SolidMaterial, B: BarMaterial>(
         .collect()
 }
 
-fn write_atomically(path: &Path, body: impl FnOnce(&mut BufWriter<File>) -> std::io::Result<()>) -> std::io::Result<()> {
+fn write_atomically(
+    path: &Path,
+    body: impl FnOnce(&mut BufWriter<File>) -> std::io::Result<()>,
+) -> std::io::Result<()> {
     let tmp = path.with_extension("vtk.part");
     {
         let mut w = BufWriter::new(File::create(&tmp)?);
@@ -196,7 +203,11 @@ pub fn write_vtk<M: SolidMaterial, B: BarMaterial>(
         let n = m.mesh.hexes.len();
         writeln!(w, "CELLS {n} {}", 9 * n)?;
         for h in &m.mesh.hexes {
-            writeln!(w, "8 {} {} {} {} {} {} {} {}", h[0], h[1], h[2], h[3], h[4], h[5], h[6], h[7])?;
+            writeln!(
+                w,
+                "8 {} {} {} {} {} {} {} {}",
+                h[0], h[1], h[2], h[3], h[4], h[5], h[6], h[7]
+            )?;
         }
         writeln!(w, "CELL_TYPES {n}")?;
         for _ in 0..n {
@@ -205,7 +216,13 @@ pub fn write_vtk<M: SolidMaterial, B: BarMaterial>(
         writeln!(w, "POINT_DATA {}", m.mesh.nodes.len())?;
         writeln!(w, "VECTORS displacement double")?;
         for (x, x0) in s.x.iter().zip(&m.mesh.nodes) {
-            writeln!(w, "{:.6e} {:.6e} {:.6e}", x[0] - x0[0], x[1] - x0[1], x[2] - x0[2])?;
+            writeln!(
+                w,
+                "{:.6e} {:.6e} {:.6e}",
+                x[0] - x0[0],
+                x[1] - x0[1],
+                x[2] - x0[2]
+            )?;
         }
         writeln!(w, "VECTORS velocity double")?;
         for v in &s.v {
@@ -217,7 +234,9 @@ pub fn write_vtk<M: SolidMaterial, B: BarMaterial>(
             for b in &m.batches {
                 for l in 0..b.len {
                     let c = if strain { &b.strain } else { &b.stress };
-                    let t = [c[0].0[l], c[1].0[l], c[2].0[l], c[3].0[l], c[4].0[l], c[5].0[l]];
+                    let t = [
+                        c[0].0[l], c[1].0[l], c[2].0[l], c[3].0[l], c[4].0[l], c[5].0[l],
+                    ];
                     writeln!(w, "{:.6e} {:.6e} {:.6e}", t[0], t[3], t[5])?;
                     writeln!(w, "{:.6e} {:.6e} {:.6e}", t[3], t[1], t[4])?;
                     writeln!(w, "{:.6e} {:.6e} {:.6e}", t[5], t[4], t[2])?;
@@ -268,7 +287,13 @@ pub fn write_vtk<M: SolidMaterial, B: BarMaterial>(
         writeln!(w, "POINT_DATA {}", emb.positions.len())?;
         writeln!(w, "VECTORS displacement double")?;
         for (x, x0) in s.bar_points().iter().zip(&emb.positions) {
-            writeln!(w, "{:.6e} {:.6e} {:.6e}", x[0] - x0[0], x[1] - x0[1], x[2] - x0[2])?;
+            writeln!(
+                w,
+                "{:.6e} {:.6e} {:.6e}",
+                x[0] - x0[0],
+                x[1] - x0[1],
+                x[2] - x0[2]
+            )?;
         }
         writeln!(w, "CELL_DATA {n}")?;
         writeln!(w, "SCALARS axial_strain double 1\nLOOKUP_TABLE default")?;
@@ -329,7 +354,14 @@ mod tests {
         let s: Vec<Sample> = (0..=10)
             .map(|i| {
                 let th = i as f64 * 0.001;
-                sample(th, if i <= 5 { 2e7 * th } else { 1e5 + 1e6 * (th - 0.005) })
+                sample(
+                    th,
+                    if i <= 5 {
+                        2e7 * th
+                    } else {
+                        1e5 + 1e6 * (th - 0.005)
+                    },
+                )
             })
             .collect();
         let k = secant_stiffness(&s, 0.1, 0.5).expect("samples");

@@ -32,7 +32,10 @@ pub struct BarSet {
 impl BarSet {
     /// Total length of the bars, m.
     pub fn length(&self) -> f64 {
-        self.bars.iter().map(|b| b.segments().map(|(p, q)| dist(p, q)).sum::<f64>()).sum()
+        self.bars
+            .iter()
+            .map(|b| b.segments().map(|(p, q)| dist(p, q)).sum::<f64>())
+            .sum()
     }
 }
 

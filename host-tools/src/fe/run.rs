@@ -115,7 +115,10 @@ pub fn run<M: SolidMaterial, B: BarMaterial>(
 ) -> anyhow::Result<Summary> {
     let mut spec = spec.clone();
     if let Some(h) = opts.element_size_mm {
-        anyhow::ensure!(h.is_finite() && h > 0.0, "--element-size must be a positive size in mm, found {h}");
+        anyhow::ensure!(
+            h.is_finite() && h > 0.0,
+            "--element-size must be a positive size in mm, found {h}"
+        );
         spec.analysis.element_size_mm = h;
     }
     let threads = opts.threads.or(spec.analysis.threads).unwrap_or(2);
@@ -123,13 +126,17 @@ pub fn run<M: SolidMaterial, B: BarMaterial>(
     let mesh = spec.mesh();
     let quality = mesh.section.quality(mesh.dz);
     let sets = spec.bar_sets();
-    let emb = embed(&mesh, &sets).with_context(|| format!("embedding the bars of {}", spec.name))?;
+    let emb =
+        embed(&mesh, &sets).with_context(|| format!("embedding the bars of {}", spec.name))?;
     let model = Model::new(mesh, solid, &sets, bars, emb, spec.settings());
     let dt = model.dt();
     let end = spec.end_time();
     let steps = (end / dt).ceil() as u64;
     let every = (steps / spec.output.samples as u64).max(1);
-    let vtk_every = spec.output.vtk_every_s.map(|v| ((v / dt).round() as u64).max(1));
+    let vtk_every = spec
+        .output
+        .vtk_every_s
+        .map(|v| ((v / dt).round() as u64).max(1));
     let mut s = Solver::new(model, spec.controls(), threads);
     let stations = output::resolve_stations(&s, &spec.output.rebar_station);
 
@@ -139,27 +146,39 @@ pub fn run<M: SolidMaterial, B: BarMaterial>(
         std::fs::create_dir_all(dir).with_context(|| format!("creating {}", dir.display()))?;
         let tt = dir.join("torque_twist.csv");
         let rb = dir.join("rebar_strains.csv");
-        let csv = Csv::create(&tt, &TORQUE_TWIST_HEADER).with_context(|| format!("creating {}", tt.display()))?;
+        let csv = Csv::create(&tt, &TORQUE_TWIST_HEADER)
+            .with_context(|| format!("creating {}", tt.display()))?;
         let mut header = vec!["time_s", "twist_rad", "torque_kNm"];
         header.extend(stations.iter().map(|st: &Station| st.name.as_str()));
-        let rcsv = Csv::create(&rb, &header).with_context(|| format!("creating {}", rb.display()))?;
+        let rcsv =
+            Csv::create(&rb, &header).with_context(|| format!("creating {}", rb.display()))?;
         outputs.push(tt);
         outputs.push(rb);
         files = Some((dir.clone(), csv, rcsv));
     }
     let mut vtk_index = 0;
-    let write_row = |s: &Solver<M, B>, files: &mut Option<(PathBuf, Csv, Csv)>, samples: &mut Vec<Sample>| -> anyhow::Result<()> {
+    let write_row = |s: &Solver<M, B>,
+                     files: &mut Option<(PathBuf, Csv, Csv)>,
+                     samples: &mut Vec<Sample>|
+     -> anyhow::Result<()> {
         let smp = Sample::of(s);
         samples.push(smp);
         if let Some((_, csv, rcsv)) = files {
             csv.row(&smp.row())?;
             let mut r = vec![smp.t, smp.twist, smp.torque / 1e3];
-            r.extend(stations.iter().map(|st| s.model.truss_state[st.truss].strain));
+            r.extend(
+                stations
+                    .iter()
+                    .map(|st| s.model.truss_state[st.truss].strain),
+            );
             rcsv.row(&r)?;
         }
         Ok(())
     };
-    let mut write_vtk = |s: &Solver<M, B>, files: &Option<(PathBuf, Csv, Csv)>, outputs: &mut Vec<PathBuf>| -> anyhow::Result<()> {
+    let mut write_vtk = |s: &Solver<M, B>,
+                         files: &Option<(PathBuf, Csv, Csv)>,
+                         outputs: &mut Vec<PathBuf>|
+     -> anyhow::Result<()> {
         if let Some((dir, _, _)) = files {
             outputs.extend(output::write_vtk(s, dir, vtk_index)?);
             vtk_index += 1;
@@ -236,4 +255,70 @@ pub fn run<M: SolidMaterial, B: BarMaterial>(
         wall_s: wall,
         ns_per_element_step: wall * 1e9 / (s.steps.max(1) as f64 * m.elements() as f64),
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::fe::material::Elastic;
+    use std::path::Path;
+
+    #[test]
+    fn an_interrupted_run_keeps_complete_files_and_says_so() {
+        let p = Path::new(env!("CARGO_MANIFEST_DIR")).join("../specimens/tp-92.toml");
+        let spec = Specimen::load(&p).expect("specimen");
+        let dir = std::env::temp_dir().join(format!("hyst-fe-interrupt-{}", std::process::id()));
+        let opts = RunOptions {
+            out: Some(dir.clone()),
+            threads: Some(1),
+            element_size_mm: Some(100.0),
+        };
+        let stop = AtomicBool::new(false);
+        let mut calls = 0;
+        let s = run(
+            &spec,
+            "elastic",
+            Elastic::new(spec.concrete()),
+            spec.steel(),
+            &opts,
+            &stop,
+            |p| {
+                calls += 1;
+                if p.step * 3 > p.steps {
+                    stop.store(true, Ordering::Relaxed);
+                }
+            },
+        )
+        .expect("run");
+        assert!(s.interrupted && calls > 0);
+        assert!(s.time_s < spec.end_time());
+        let csv = std::fs::read_to_string(dir.join("torque_twist.csv")).expect("csv");
+        let rows: Vec<&str> = csv.lines().collect();
+        assert!(rows.len() > 10);
+        assert!(rows
+            .iter()
+            .all(|r| r.split(',').count() == TORQUE_TWIST_HEADER.len()));
+        let last: Vec<f64> = rows[rows.len() - 1]
+            .split(',')
+            .map(|v| v.parse().expect("number"))
+            .collect();
+        assert!((last[0] - s.time_s).abs() < 1e-12);
+        let vtk: Vec<_> = s
+            .outputs
+            .iter()
+            .filter(|o| o.extension().is_some_and(|e| e == "vtk"))
+            .collect();
+        assert!(vtk.len() >= 2);
+        for f in vtk {
+            let text = std::fs::read_to_string(f).expect("vtk");
+            assert!(text.starts_with("# vtk DataFile Version 3.0"));
+            assert!(text.contains("CELL_DATA"));
+        }
+        assert!(std::fs::read_dir(&dir).expect("dir").all(|e| !e
+            .expect("entry")
+            .path()
+            .to_string_lossy()
+            .ends_with(".part")));
+        std::fs::remove_dir_all(&dir).ok();
+    }
 }

@@ -241,7 +241,14 @@ pub struct SpecError {
 
 impl std::fmt::Display for SpecError {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        write!(f, "{}:{}:{}: {}", self.file.display(), self.line, self.column, self.message)
+        write!(
+            f,
+            "{}:{}:{}: {}",
+            self.file.display(),
+            self.line,
+            self.column,
+            self.message
+        )
     }
 }
 
@@ -250,7 +257,10 @@ impl std::error::Error for SpecError {}
 fn line_col(src: &str, offset: usize) -> (usize, usize) {
     let before = &src[..offset.min(src.len())];
     let line = before.matches('\n').count() + 1;
-    let col = before.rfind('\n').map_or(before.len(), |p| before.len() - p - 1) + 1;
+    let col = before
+        .rfind('\n')
+        .map_or(before.len(), |p| before.len() - p - 1)
+        + 1;
     (line, col)
 }
 
@@ -328,19 +338,38 @@ impl Specimen {
         if !(s.clear_cover_mm >= 0.0) {
             return Err(("section.clear_cover_mm", "a cover of 0 mm or more".into()));
         }
-        pos(self.column.height_m, "column.height_m", "the modelled height in m")?;
+        pos(
+            self.column.height_m,
+            "column.height_m",
+            "the modelled height in m",
+        )?;
         let c = &self.concrete;
         pos(c.fc_mpa, "concrete.fc_mpa", "the cylinder strength in MPa")?;
         if let Some(e) = c.elastic_modulus_mpa {
             pos(e, "concrete.elastic_modulus_mpa", "Young's modulus in MPa")?;
         }
         if !(c.poisson >= 0.0 && c.poisson < 0.5) {
-            return Err(("concrete.poisson", format!("a Poisson's ratio in [0, 0.5), found {}", c.poisson)));
+            return Err((
+                "concrete.poisson",
+                format!("a Poisson's ratio in [0, 0.5), found {}", c.poisson),
+            ));
         }
-        pos(c.density_kg_m3, "concrete.density_kg_m3", "the density in kg/m^3")?;
+        pos(
+            c.density_kg_m3,
+            "concrete.density_kg_m3",
+            "the density in kg/m^3",
+        )?;
         let l = &self.longitudinal;
-        pos(l.bar_diameter_mm, "longitudinal.bar_diameter_mm", "the bar diameter in mm")?;
-        pos(l.yield_mpa, "longitudinal.yield_mpa", "the yield strength in MPa")?;
+        pos(
+            l.bar_diameter_mm,
+            "longitudinal.bar_diameter_mm",
+            "the bar diameter in mm",
+        )?;
+        pos(
+            l.yield_mpa,
+            "longitudinal.yield_mpa",
+            "the yield strength in MPa",
+        )?;
         let bad_count = match s.shape {
             Shape::Circular => l.count < 3,
             Shape::Square => l.count < 4 || l.count % 4 != 0,
@@ -348,39 +377,82 @@ impl Specimen {
         if bad_count {
             return Err((
                 "longitudinal.count",
-                format!("at least 3 bars (circular) or a multiple of 4 (square), found {}", l.count),
+                format!(
+                    "at least 3 bars (circular) or a multiple of 4 (square), found {}",
+                    l.count
+                ),
             ));
         }
         let t = &self.transverse;
-        pos(t.bar_diameter_mm, "transverse.bar_diameter_mm", "the bar diameter in mm")?;
-        pos(t.spacing_mm, "transverse.spacing_mm", "the pitch or spacing in mm")?;
-        pos(t.yield_mpa, "transverse.yield_mpa", "the yield strength in MPa")?;
+        pos(
+            t.bar_diameter_mm,
+            "transverse.bar_diameter_mm",
+            "the bar diameter in mm",
+        )?;
+        pos(
+            t.spacing_mm,
+            "transverse.spacing_mm",
+            "the pitch or spacing in mm",
+        )?;
+        pos(
+            t.yield_mpa,
+            "transverse.yield_mpa",
+            "the yield strength in MPa",
+        )?;
         if s.shape == Shape::Square && t.kind == TransverseKind::Spiral {
             return Err(("transverse.kind", "\"hoops\" for a square section".into()));
         }
         let inner = s.size_mm - 2.0 * (s.clear_cover_mm + t.bar_diameter_mm + l.bar_diameter_mm);
         if !(inner > 0.0) {
-            return Err(("section.clear_cover_mm", "cover and bars that fit inside the section".into()));
+            return Err((
+                "section.clear_cover_mm",
+                "cover and bars that fit inside the section".into(),
+            ));
         }
-        pos(self.steel.elastic_modulus_mpa, "steel.elastic_modulus_mpa", "Young's modulus in MPa")?;
-        pos(self.steel.density_kg_m3, "steel.density_kg_m3", "the density in kg/m^3")?;
+        pos(
+            self.steel.elastic_modulus_mpa,
+            "steel.elastic_modulus_mpa",
+            "Young's modulus in MPa",
+        )?;
+        pos(
+            self.steel.density_kg_m3,
+            "steel.density_kg_m3",
+            "the density in kg/m^3",
+        )?;
         let ld = &self.loading;
         if !(ld.axial_force_kn.is_finite() && ld.axial_force_kn >= 0.0) {
-            return Err(("loading.axial_force_kn", "a compression of 0 kN or more".into()));
+            return Err((
+                "loading.axial_force_kn",
+                "a compression of 0 kN or more".into(),
+            ));
         }
         if ld.axial_force_kn > 0.0 {
-            pos(ld.axial_ramp_s, "loading.axial_ramp_s", "the time to apply the axial force in s")?;
+            pos(
+                ld.axial_ramp_s,
+                "loading.axial_ramp_s",
+                "the time to apply the axial force in s",
+            )?;
         }
         if ld.twist.len() < 2 || ld.twist[0][0] != 0.0 {
-            return Err(("loading.twist", "a table of at least two [time s, twist rad] rows starting at time 0".into()));
+            return Err((
+                "loading.twist",
+                "a table of at least two [time s, twist rad] rows starting at time 0".into(),
+            ));
         }
         for w in ld.twist.windows(2) {
             if !(w[1][0] > w[0][0]) || !w[1][1].is_finite() {
-                return Err(("loading.twist", "strictly increasing times and finite twists".into()));
+                return Err((
+                    "loading.twist",
+                    "strictly increasing times and finite twists".into(),
+                ));
             }
         }
         let a = &self.analysis;
-        pos(a.element_size_mm, "analysis.element_size_mm", "the element size in mm")?;
+        pos(
+            a.element_size_mm,
+            "analysis.element_size_mm",
+            "the element size in mm",
+        )?;
         if !(a.hourglass_scale >= 0.0) {
             return Err(("analysis.hourglass_scale", "a scale of 0 or more".into()));
         }
@@ -404,10 +476,16 @@ impl Specimen {
         }
         for st in &self.output.rebar_station {
             if st.set != "longitudinal" && st.set != "transverse" {
-                return Err(("output.rebar_station", format!("set \"longitudinal\" or \"transverse\", found {:?}", st.set)));
+                return Err((
+                    "output.rebar_station",
+                    format!("set \"longitudinal\" or \"transverse\", found {:?}", st.set),
+                ));
             }
             if !(st.z_m >= 0.0 && st.z_m <= self.column.height_m) {
-                return Err(("output.rebar_station", format!("z_m within the column height, found {}", st.z_m)));
+                return Err((
+                    "output.rebar_station",
+                    format!("z_m within the column height, found {}", st.z_m),
+                ));
             }
         }
         Ok(())
@@ -490,7 +568,10 @@ impl Specimen {
         let long = BarSet {
             name: "longitudinal".into(),
             area: PI * (l.bar_diameter_mm / 1000.0).powi(2) / 4.0,
-            bars: pts.iter().map(|&(x, y)| rebar::vertical(x, y, 0.0, height, h)).collect(),
+            bars: pts
+                .iter()
+                .map(|&(x, y)| rebar::vertical(x, y, 0.0, height, h))
+                .collect(),
         };
         let t = &self.transverse;
         let s = t.spacing_mm / 1000.0;
@@ -500,12 +581,14 @@ impl Specimen {
             .collect();
         let bars = match (self.section.shape, t.kind) {
             (_, TransverseKind::Spiral) => vec![rebar::helix(rt, s, 0.0, height, h)],
-            (Shape::Circular, TransverseKind::Hoops) => {
-                levels.iter().map(|&z| rebar::circular_hoop(rt, z, h)).collect()
-            }
-            (Shape::Square, TransverseKind::Hoops) => {
-                levels.iter().map(|&z| rebar::square_hoop(rt, z, h)).collect()
-            }
+            (Shape::Circular, TransverseKind::Hoops) => levels
+                .iter()
+                .map(|&z| rebar::circular_hoop(rt, z, h))
+                .collect(),
+            (Shape::Square, TransverseKind::Hoops) => levels
+                .iter()
+                .map(|&z| rebar::square_hoop(rt, z, h))
+                .collect(),
         };
         let trans = BarSet {
             name: "transverse".into(),
@@ -619,8 +702,20 @@ mod tests {
             let r = &s.reference;
             let el = 100.0 * rl / r.longitudinal_ratio_pct - 1.0;
             let et = 100.0 * rt / r.transverse_ratio_pct - 1.0;
-            assert!(el.abs() < 0.03, "{}: longitudinal {:.3}% vs {}%", p.display(), 100.0 * rl, r.longitudinal_ratio_pct);
-            assert!(et.abs() < 0.03, "{}: transverse {:.3}% vs {}%", p.display(), 100.0 * rt, r.transverse_ratio_pct);
+            assert!(
+                el.abs() < 0.03,
+                "{}: longitudinal {:.3}% vs {}%",
+                p.display(),
+                100.0 * rl,
+                r.longitudinal_ratio_pct
+            );
+            assert!(
+                et.abs() < 0.03,
+                "{}: transverse {:.3}% vs {}%",
+                p.display(),
+                100.0 * rt,
+                r.transverse_ratio_pct
+            );
         }
     }
 
@@ -630,7 +725,11 @@ mod tests {
         let want = [27_800.0, 27_800.0, 44_900.0, 76_900.0, 47_500.0];
         for ((p, s), w) in specimens().into_iter().zip(want) {
             let k = s.saint_venant_stiffness() / 1e3;
-            assert!((k / w - 1.0).abs() < 0.005, "{}: {k:.0} vs {w}", p.display());
+            assert!(
+                (k / w - 1.0).abs() < 0.005,
+                "{}: {k:.0} vs {w}",
+                p.display()
+            );
         }
     }
 
@@ -641,7 +740,11 @@ mod tests {
             let src = std::fs::read_to_string(&p).expect("read");
             for key in s.assumed.keys() {
                 let last = key.rsplit('.').next().unwrap_or(key);
-                assert!(locate(&src, key) > 0 && src.contains(last), "{}: {key}", p.display());
+                assert!(
+                    locate(&src, key) > 0 && src.contains(last),
+                    "{}: {key}",
+                    p.display()
+                );
             }
             // Every bar lies inside the concrete.
             let mesh = s.mesh();
@@ -655,10 +758,16 @@ mod tests {
         let src = std::fs::read_to_string(&dir).expect("read");
         let bad = src.replacen("size_mm = 400.0", "size_mm = -400.0", 1);
         let e = Specimen::parse(&bad, Path::new("x.toml")).expect_err("negative size");
-        let line = bad.lines().position(|l| l.contains("size_mm = -400.0")).map(|i| i + 1);
+        let line = bad
+            .lines()
+            .position(|l| l.contains("size_mm = -400.0"))
+            .map(|i| i + 1);
         assert_eq!(Some(e.line), line, "{e}");
         assert!(e.to_string().starts_with("x.toml:"), "{e}");
-        assert!(e.message.contains("section.size_mm") && e.message.contains("positive"), "{e}");
+        assert!(
+            e.message.contains("section.size_mm") && e.message.contains("positive"),
+            "{e}"
+        );
         let typo = src.replacen("fc_mpa", "fc_mp", 1);
         let e = Specimen::parse(&typo, Path::new("x.toml")).expect_err("unknown key");
         assert!(e.message.contains("fc_mp"), "{e}");
