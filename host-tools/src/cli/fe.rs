@@ -78,6 +78,13 @@ pub fn run_fe(args: FeArgs) -> anyhow::Result<()> {
     } else {
         print_summary(&summary);
     }
+    if summary.interrupted {
+        anyhow::bail!(
+            "interrupted at step {} (t = {:.4e} s); the files written so far are complete",
+            summary.steps,
+            summary.time_s
+        );
+    }
     Ok(())
 }
 

@@ -420,3 +420,54 @@ fn one_and_two_threads_give_bit_identical_results() {
         assert_eq!(x.stress.to_bits(), y.stress.to_bits());
     }
 }
+
+#[test]
+fn mass_scaling_lifts_the_bar_step_and_reports_the_added_mass() {
+    let (b, l, h) = (0.2, 0.3, 0.025);
+    let mesh = Mesh::extrude(Section::square(b, h), l, h);
+    let bars = vec![BarSet {
+        name: "longitudinal".into(),
+        area: 2e-4,
+        bars: vec![super::rebar::vertical(0.05, 0.05, 0.0, l, h)],
+    }];
+    let steel = ElasticBar {
+        e: 200e9,
+        density: 7800.0,
+    };
+    let build = |settings| {
+        let emb = embed(&mesh, &bars).expect("inside");
+        Model::new(
+            mesh.clone(),
+            Elastic::new(CONCRETE),
+            &bars,
+            vec![steel],
+            emb,
+            settings,
+        )
+    };
+    let plain = build(Settings::default());
+    // The 25 mm bar segments set the step, below the concrete's.
+    assert!(plain.limits.truss < plain.limits.hex);
+    assert_eq!(plain.added_mass, 0.0);
+    assert!((plain.dt() - 0.9 * plain.limits.truss).abs() < 1e-18);
+    let target = plain.limits.hex;
+    let scaled = build(Settings {
+        mass_scaling_dt: Some(target),
+        ..Settings::default()
+    });
+    assert!((scaled.dt() - 0.9 * target).abs() < 1e-15 * target);
+    let c = (200e9f64 / 7800.0).sqrt();
+    let want: f64 = scaled
+        .embedding
+        .trusses
+        .iter()
+        .map(|t| 7800.0 * t.area * t.length * ((target * c / t.length).powi(2) - 1.0))
+        .sum();
+    assert!(
+        (scaled.added_mass - want).abs() < 1e-9 * want,
+        "{} vs {want}",
+        scaled.added_mass
+    );
+    let total: f64 = scaled.mass.iter().sum();
+    assert!((total - scaled.physical_mass - scaled.added_mass).abs() < 1e-9 * total);
+}
