@@ -115,15 +115,15 @@ type V3 = [F4; 3];
 #[inline(always)]
 fn cross4(a: V3, b: V3) -> V3 {
     [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
+        a[1].mul_add(b[2], -(a[2] * b[1])),
+        a[2].mul_add(b[0], -(a[0] * b[2])),
+        a[0].mul_add(b[1], -(a[1] * b[0])),
     ]
 }
 
 #[inline(always)]
 fn lin(a: V3, fa: f64, b: V3, fb: f64) -> V3 {
-    std::array::from_fn(|i| a[i] * fa + b[i] * fb)
+    std::array::from_fn(|i| a[i].mul_add(F4::splat(fa), b[i] * fb))
 }
 
 /// Coefficient vectors `[e1, e2, e3, h1, h2, h3, h4]` of the geometry, the
@@ -277,15 +277,16 @@ pub fn step<M: SolidMaterial>(
     // Jaumann rotation: sigma += W sigma - sigma W (W already times dt).
     let s = batch.stress;
     let (sxx, syy, szz, sxy, syz, szx) = (s[0], s[1], s[2], s[3], s[4], s[5]);
-    let a00 = wxy * sxy - wzx * szx;
-    let a11 = wyz * syz - wxy * sxy;
-    let a22 = wzx * szx - wyz * syz;
-    let a01 = wxy * syy - wzx * syz;
-    let a10 = wyz * szx - wxy * sxx;
-    let a12 = wyz * szz - wxy * szx;
-    let a21 = wzx * sxy - wyz * syy;
-    let a20 = wzx * sxx - wyz * sxy;
-    let a02 = wxy * syz - wzx * szz;
+    let ms = |a: F4, b: F4, c: F4, d: F4| a.mul_add(b, -(c * d));
+    let a00 = ms(wxy, sxy, wzx, szx);
+    let a11 = ms(wyz, syz, wxy, sxy);
+    let a22 = ms(wzx, szx, wyz, syz);
+    let a01 = ms(wxy, syy, wzx, syz);
+    let a10 = ms(wyz, szx, wxy, sxx);
+    let a12 = ms(wyz, szz, wxy, szx);
+    let a21 = ms(wzx, sxy, wyz, syy);
+    let a20 = ms(wzx, sxx, wyz, sxy);
+    let a02 = ms(wxy, syz, wzx, szz);
     let rotated: Sym6 = [
         sxx + a00 + a00,
         syy + a11 + a11,
@@ -311,7 +312,7 @@ pub fn step<M: SolidMaterial>(
     // Bulk viscosity.
     let ev = l[0][0] + l[1][1] + l[2][2];
     let evn = ev.min0();
-    let sv = batch.bv1 * ev - batch.bv2 * evn * evn;
+    let sv = batch.bv1.mul_add(ev, -(batch.bv2 * evn * evn));
 
     // Hourglass control. Gamma_alpha . x_j = 8 h_alpha_j; the mode rates
     // are q_i_alpha = v_i . gamma_alpha = 8 vh_alpha_i - sum_j s_alpha_j L_ij.
@@ -322,7 +323,7 @@ pub fn step<M: SolidMaterial>(
         for al in 0..4 {
             let proj =
                 s_al[al][0].mul_add(l[i][0], s_al[al][1].mul_add(l[i][1], s_al[al][2] * l[i][2]));
-            let q = vc[i][3 + al] * 8.0 - proj;
+            let q = vc[i][3 + al].mul_add(F4::splat(8.0), -proj);
             let old = batch.hg[i][al];
             let upd = kdt.mul_add(q, old);
             batch.hg[i][al] = upd;
@@ -345,7 +346,7 @@ pub fn step<M: SolidMaterial>(
                 s_al[0][j],
                 q[1].mul_add(s_al[1][j], q[2].mul_add(s_al[2][j], q[3] * s_al[3][j])),
             );
-            sig[i][j] - qs * inv_v
+            (-qs).mul_add(inv_v, sig[i][j])
         });
         let mut fk = [F4::ZERO; 7];
         for k in 0..6 {
