@@ -7,6 +7,7 @@ pub mod cli;
 pub mod data;
 pub mod discover;
 pub mod export;
+pub mod fe;
 pub mod fit;
 pub mod model;
 pub mod report;

@@ -3,6 +3,7 @@
 pub mod diagnose;
 pub mod discover;
 pub mod export;
+pub mod fe;
 pub mod fit;
 pub mod params;
 pub mod sensitivity;
@@ -39,6 +40,8 @@ pub enum Command {
     Export(export::ExportArgs),
     /// Work with binary parameter tables (`check`).
     Table(table::TableArgs),
+    /// Explicit finite-element analysis of an RC column under twist.
+    Fe(fe::FeArgs),
 }
 
 /// Runs a parsed command line.
@@ -52,5 +55,6 @@ pub fn run(cli: Cli) -> anyhow::Result<()> {
         Command::Simulate(a) => simulate::run(a),
         Command::Export(a) => export::run(a),
         Command::Table(a) => table::run(a),
+        Command::Fe(a) => fe::run_fe(a),
     }
 }

@@ -104,7 +104,9 @@ fn pinching(d: &Diagnosis) -> Signature {
         _ => sentence.push_str("; too few reloading samples to compare stiffness near and away from zero force"),
     }
     if !supports {
-        sentence.push_str(&format!(" (pinching shows as a ratio of {PINCHING_RATIO} or more)"));
+        sentence.push_str(&format!(
+            " (pinching shows as a ratio of {PINCHING_RATIO} or more)"
+        ));
     }
     sentence.push('.');
     Signature {

@@ -1,0 +1,31 @@
+//! An explicit finite-element solver for reinforced-concrete columns under
+//! torsion and axial load (thesis chapter 2). See `docs/fe.md` for the
+//! formulation, the checks and the measured numbers.
+//!
+//! * [`specimen`]: specimen files (TOML) of circular and square columns.
+//! * [`mesh`], [`rebar`]: hexahedral meshes and embedded bars.
+//! * [`hex8`], [`material`]: the one-point hexahedron with hourglass
+//!   control, and the material traits (elastic here; damaged plasticity
+//!   and steel plug in through them).
+//! * [`model`], [`explicit`]: assembly, time step, mass scaling, the
+//!   central-difference solver with the rigid top.
+//! * [`quasi_static`], [`output`], [`run`]: energy checks, CSV and VTK
+//!   output, a whole analysis.
+// Negated comparisons treat NaN as a failure (`!(x > 0.0)` is true for NaN),
+// as in the core crate. Kernels index several arrays with one index, which
+// reads like the equations; iterators would hide that.
+#![allow(clippy::neg_cmp_op_on_partial_ord, clippy::needless_range_loop)]
+#[cfg(test)]
+mod checks;
+pub mod explicit;
+pub mod hex8;
+pub mod history;
+pub mod material;
+pub mod mesh;
+pub mod model;
+pub mod output;
+pub mod quasi_static;
+pub mod rebar;
+pub mod run;
+pub mod simd;
+pub mod specimen;

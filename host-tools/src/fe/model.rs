@@ -1,0 +1,280 @@
+//! The assembled model: element batches with their constants, embedded
+//! trusses, lumped nodal masses, the stable time step with optional mass
+//! scaling, and the node-to-contribution tables that make the assembly of
+//! nodal forces deterministic.
+
+use super::hex8::{self, HexBatch};
+use super::material::{BarMaterial, SolidMaterial};
+use super::mesh::Mesh;
+use super::rebar::{BarSet, Embedding};
+use super::simd::{F4, LANES};
+
+/// Numerical settings of the explicit procedure.
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
+pub struct Settings {
+    /// Hourglass stiffness scale `s` (1 gives a cubic element the exact
+    /// stiffness `G h / 48` of the linearly varying shear strain of
+    /// torsion; see [`super::hex8`]).
+    pub hourglass_scale: f64,
+    /// Linear bulk-viscosity coefficient `b1` (ABAQUS default 0.06).
+    pub bulk_linear: f64,
+    /// Quadratic bulk-viscosity coefficient `b2` (ABAQUS default 1.2).
+    pub bulk_quadratic: f64,
+    /// Fraction of the element-by-element stable step used.
+    pub dt_safety: f64,
+    /// Mass scaling: elements whose stable step is below this one get
+    /// their density raised to reach it, s.
+    pub mass_scaling_dt: Option<f64>,
+}
+
+impl Default for Settings {
+    fn default() -> Self {
+        Settings {
+            hourglass_scale: 1.0,
+            bulk_linear: 0.06,
+            bulk_quadratic: 1.2,
+            dt_safety: 0.9,
+            mass_scaling_dt: None,
+        }
+    }
+}
+
+/// Stress and history of one truss.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct TrussState<S> {
+    /// Axial stress, Pa.
+    pub stress: f64,
+    /// Accumulated axial strain.
+    pub strain: f64,
+    /// Material history.
+    pub state: S,
+}
+
+/// Compressed rows: the contributions to each node.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Rows<T> {
+    /// `start[n]..start[n + 1]` indexes `entries` for node `n`.
+    pub start: Vec<u32>,
+    /// The contributions, in a fixed order.
+    pub entries: Vec<T>,
+}
+
+impl<T: Copy> Rows<T> {
+    fn build(nodes: usize, items: &[(u32, T)]) -> Rows<T> {
+        let mut count = vec![0u32; nodes + 1];
+        for (n, _) in items {
+            count[*n as usize + 1] += 1;
+        }
+        for i in 0..nodes {
+            count[i + 1] += count[i];
+        }
+        let mut fill = count.clone();
+        let mut entries: Vec<Option<T>> = vec![None; items.len()];
+        for (n, t) in items {
+            let k = &mut fill[*n as usize];
+            entries[*k as usize] = Some(*t);
+            *k += 1;
+        }
+        Rows {
+            start: count,
+            entries: entries.into_iter().flatten().collect(),
+        }
+    }
+
+    /// The contributions to node `n`.
+    pub fn row(&self, n: usize) -> &[T] {
+        &self.entries[self.start[n] as usize..self.start[n + 1] as usize]
+    }
+}
+
+/// Stable time steps before and after mass scaling.
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
+pub struct StepLimits {
+    /// Smallest stable step of the hexahedra (bulk viscosity included), s.
+    pub hex: f64,
+    /// Smallest stable step of the truss segments, s.
+    pub truss: f64,
+    /// The step used: safety times the smallest step after mass scaling, s.
+    pub dt: f64,
+}
+
+/// A model ready for the explicit solver.
+pub struct Model<M: SolidMaterial, B: BarMaterial> {
+    /// The mesh (reference configuration).
+    pub mesh: Mesh,
+    /// Concrete.
+    pub solid: M,
+    /// One material per bar set.
+    pub bar_materials: Vec<B>,
+    /// Names of the bar sets.
+    pub bar_names: Vec<String>,
+    /// Hexahedra in batches of [`LANES`].
+    pub batches: Vec<HexBatch<M::State>>,
+    /// The embedded bars.
+    pub embedding: Embedding,
+    /// Truss stresses and histories.
+    pub truss_state: Vec<TrussState<B::State>>,
+    /// Lumped nodal masses (scaled), kg.
+    pub mass: Vec<f64>,
+    /// Hexahedron force slots (`8 e + a`) of each node.
+    pub hex_rows: Rows<u32>,
+    /// Truss force slots (`2 t + end`) and weights of each node.
+    pub truss_rows: Rows<(u32, f64)>,
+    /// The time steps.
+    pub limits: StepLimits,
+    /// Physical mass, kg.
+    pub physical_mass: f64,
+    /// Mass added by mass scaling, kg.
+    pub added_mass: f64,
+    /// The settings the model was built with.
+    pub settings: Settings,
+}
+
+impl<M: SolidMaterial, B: BarMaterial> Model<M, B> {
+    /// Builds the model; `bar_sets[i]` uses `bar_materials[i]`.
+    pub fn new(
+        mesh: Mesh,
+        solid: M,
+        bar_sets: &[BarSet],
+        bar_materials: Vec<B>,
+        embedding: Embedding,
+        settings: Settings,
+    ) -> Self {
+        let props = solid.initial();
+        let c = props.wave_speed();
+        let g = props.shear_modulus();
+        let rho = props.density;
+        let b1 = settings.bulk_linear;
+        let visc = (1.0 + b1 * b1).sqrt() - b1;
+        let target = settings.mass_scaling_dt.unwrap_or(0.0);
+        let n_nodes = mesh.nodes.len();
+        let mut mass = vec![0.0; n_nodes];
+        let mut physical = 0.0;
+        let mut added = 0.0;
+        let mut dt_hex = f64::INFINITY;
+        let mut dt_min = f64::INFINITY;
+        let n_el = mesh.hexes.len();
+        let mut batches = Vec::with_capacity(n_el.div_ceil(LANES));
+        for chunk in mesh.hexes.chunks(LANES) {
+            let mut nodes = [[0u32; LANES]; 8];
+            let mut hg_k = F4::ZERO;
+            let mut le = F4::ZERO;
+            let mut bv1 = F4::ZERO;
+            let mut bv2 = F4::ZERO;
+            let mut mask = F4::ZERO;
+            for l in 0..LANES {
+                let real = l < chunk.len();
+                let hex = chunk[l.min(chunk.len() - 1)];
+                for a in 0..8 {
+                    nodes[a][l] = hex[a];
+                }
+                let xs: [[f64; 3]; 8] = std::array::from_fn(|a| mesh.nodes[hex[a] as usize]);
+                let (vol, len, bb) = hex8::measures(&xs);
+                hg_k.0[l] = settings.hourglass_scale * g * bb / (72.0 * vol);
+                le.0[l] = len;
+                bv1.0[l] = b1 * rho * c * len;
+                bv2.0[l] = settings.bulk_quadratic.powi(2) * rho * len * len;
+                if real {
+                    mask.0[l] = 1.0;
+                    let dt_e = len / c * visc;
+                    dt_hex = dt_hex.min(dt_e);
+                    let scale = if dt_e < target {
+                        (target / dt_e).powi(2)
+                    } else {
+                        1.0
+                    };
+                    dt_min = dt_min.min(dt_e * scale.sqrt());
+                    let m = rho * vol;
+                    physical += m;
+                    added += m * (scale - 1.0);
+                    for &n in &hex {
+                        mass[n as usize] += m * scale / 8.0;
+                    }
+                }
+            }
+            batches.push(HexBatch {
+                nodes,
+                len: chunk.len(),
+                stress: [F4::ZERO; 6],
+                strain: [F4::ZERO; 6],
+                hg: [[F4::ZERO; 4]; 3],
+                hg_k,
+                char_len: le,
+                bv1,
+                bv2,
+                mask,
+                state: Default::default(),
+            });
+        }
+        let mut dt_truss = f64::INFINITY;
+        for t in &embedding.trusses {
+            let mat = &bar_materials[t.set as usize];
+            let cs = (mat.modulus() / mat.density()).sqrt();
+            let dt_e = t.length / cs;
+            dt_truss = dt_truss.min(dt_e);
+            let scale = if dt_e < target {
+                (target / dt_e).powi(2)
+            } else {
+                1.0
+            };
+            dt_min = dt_min.min(dt_e * scale.sqrt());
+            let m = mat.density() * t.area * t.length;
+            physical += m;
+            added += m * (scale - 1.0);
+            for &p in &t.ends {
+                let pt = &embedding.points[p as usize];
+                for a in 0..8 {
+                    mass[pt.hosts[a] as usize] += 0.5 * m * scale * pt.weights[a];
+                }
+            }
+        }
+        let mut hex_items = Vec::with_capacity(8 * n_el);
+        for (e, hex) in mesh.hexes.iter().enumerate() {
+            for (a, &n) in hex.iter().enumerate() {
+                hex_items.push((n, (8 * e + a) as u32));
+            }
+        }
+        let mut truss_items = Vec::new();
+        for (t, tr) in embedding.trusses.iter().enumerate() {
+            for (end, &p) in tr.ends.iter().enumerate() {
+                let pt = &embedding.points[p as usize];
+                for a in 0..8 {
+                    if pt.weights[a] != 0.0 {
+                        truss_items.push((pt.hosts[a], ((2 * t + end) as u32, pt.weights[a])));
+                    }
+                }
+            }
+        }
+        let truss_state = vec![TrussState::default(); embedding.trusses.len()];
+        Model {
+            hex_rows: Rows::build(n_nodes, &hex_items),
+            truss_rows: Rows::build(n_nodes, &truss_items),
+            mesh,
+            solid,
+            bar_materials,
+            bar_names: bar_sets.iter().map(|s| s.name.clone()).collect(),
+            batches,
+            embedding,
+            truss_state,
+            mass,
+            limits: StepLimits {
+                hex: dt_hex,
+                truss: dt_truss,
+                dt: settings.dt_safety * dt_min,
+            },
+            physical_mass: physical,
+            added_mass: added,
+            settings,
+        }
+    }
+
+    /// The time step, s.
+    pub fn dt(&self) -> f64 {
+        self.limits.dt
+    }
+
+    /// Number of hexahedra.
+    pub fn elements(&self) -> usize {
+        self.mesh.hexes.len()
+    }
+}

@@ -1,0 +1,152 @@
+//! Honesty checks of a quasi-static run (thesis 2.3): a dynamic solution
+//! stands for a static one only while inertia is negligible. Every step's
+//! energies are recorded, and a run is judged over the steps after its
+//! internal energy first reaches [`WINDOW_START`] of its maximum (at the
+//! very start every load history has more kinetic than internal energy):
+//!
+//! * kinetic / internal energy below [`KE_IE_LIMIT`] (Zimmermann 2001);
+//! * hourglass / internal energy below [`HOURGLASS_LIMIT`];
+//! * energy balance `|W - IE - VD - KE|` below [`BALANCE_LIMIT`] of
+//!   `max(W, IE + VD + KE)`.
+
+use super::explicit::Energies;
+
+/// Largest admissible kinetic to internal energy ratio.
+pub const KE_IE_LIMIT: f64 = 0.1;
+/// Largest admissible hourglass share of the internal energy.
+pub const HOURGLASS_LIMIT: f64 = 0.05;
+/// Largest admissible energy imbalance, relative.
+pub const BALANCE_LIMIT: f64 = 0.01;
+/// The judged window starts when the internal energy first reaches this
+/// fraction of its maximum.
+pub const WINDOW_START: f64 = 0.01;
+
+/// Energies of every step.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct EnergyTrace {
+    t: Vec<f64>,
+    e: Vec<Energies>,
+}
+
+impl EnergyTrace {
+    /// Records the energies at time `t`.
+    pub fn push(&mut self, t: f64, e: Energies) {
+        self.t.push(t);
+        self.e.push(e);
+    }
+
+    /// Judges the run so far.
+    pub fn verdict(&self) -> Verdict {
+        let ie_max = self.e.iter().fold(0.0f64, |m, e| m.max(e.internal()));
+        let start = self
+            .e
+            .iter()
+            .position(|e| ie_max > 0.0 && e.internal() >= WINDOW_START * ie_max)
+            .unwrap_or(self.e.len());
+        let mut v = Verdict {
+            window_start: self.t.get(start).copied().unwrap_or(f64::NAN),
+            max_ke_ie_ratio: 0.0,
+            at: f64::NAN,
+            max_hourglass_share: 0.0,
+            final_hourglass_share: 0.0,
+            max_imbalance: 0.0,
+            steps: self.e.len(),
+        };
+        for (t, e) in self.t[start..].iter().zip(&self.e[start..]) {
+            let ie = e.internal();
+            let r = e.kinetic / ie;
+            if !(r <= v.max_ke_ie_ratio) {
+                v.max_ke_ie_ratio = r;
+                v.at = *t;
+            }
+            v.max_hourglass_share = v.max_hourglass_share.max(e.hourglass / ie);
+            let scale = e.work.abs().max(ie + e.viscous + e.kinetic);
+            v.max_imbalance = v.max_imbalance.max(e.imbalance().abs() / scale);
+        }
+        if let Some(e) = self.e.last() {
+            v.final_hourglass_share = e.hourglass / e.internal();
+        }
+        v
+    }
+}
+
+/// The outcome of the checks.
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
+pub struct Verdict {
+    /// Time the judged window starts, s.
+    pub window_start: f64,
+    /// Largest kinetic / internal energy ratio in the window.
+    pub max_ke_ie_ratio: f64,
+    /// When it occurred, s.
+    pub at: f64,
+    /// Largest hourglass share of the internal energy in the window.
+    pub max_hourglass_share: f64,
+    /// Hourglass share at the end.
+    pub final_hourglass_share: f64,
+    /// Largest relative energy imbalance in the window.
+    pub max_imbalance: f64,
+    /// Steps recorded.
+    pub steps: usize,
+}
+
+impl Verdict {
+    /// The broken checks, as sentences; empty when the run is quasi-static.
+    pub fn failures(&self) -> Vec<String> {
+        let mut f = Vec::new();
+        if !(self.max_ke_ie_ratio < KE_IE_LIMIT) {
+            f.push(format!(
+                "kinetic/internal energy reached {:.3} at t = {:.4e} s (limit {KE_IE_LIMIT}): \
+                 inertia matters, load more slowly",
+                self.max_ke_ie_ratio, self.at
+            ));
+        }
+        if !(self.max_hourglass_share < HOURGLASS_LIMIT) {
+            f.push(format!(
+                "hourglass energy reached {:.1}% of internal energy (limit {:.0}%): refine the mesh",
+                100.0 * self.max_hourglass_share,
+                100.0 * HOURGLASS_LIMIT
+            ));
+        }
+        if !(self.max_imbalance < BALANCE_LIMIT) {
+            f.push(format!(
+                "energy balance off by {:.2}% (limit {:.0}%): the time step may be unstable",
+                100.0 * self.max_imbalance,
+                100.0 * BALANCE_LIMIT
+            ));
+        }
+        f
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn e(strain: f64, hourglass: f64, kinetic: f64, work: f64) -> Energies {
+        Energies {
+            strain,
+            hourglass,
+            viscous: 0.0,
+            kinetic,
+            work,
+        }
+    }
+
+    #[test]
+    fn window_skips_the_start_and_catches_violations() {
+        let mut tr = EnergyTrace::default();
+        tr.push(0.0, e(0.0, 0.0, 1e-6, 1e-6));
+        tr.push(1.0, e(0.005, 0.0, 0.01, 0.015));
+        tr.push(2.0, e(0.5, 0.01, 0.01, 0.52));
+        tr.push(3.0, e(1.0, 0.02, 0.2, 1.22));
+        let v = tr.verdict();
+        assert_eq!(v.window_start, 2.0);
+        assert!((v.max_ke_ie_ratio - 0.2 / 1.02).abs() < 1e-12);
+        assert_eq!(v.at, 3.0);
+        assert_eq!(v.failures().len(), 1);
+        let mut bad = tr.clone();
+        bad.push(4.0, e(1.0, 0.1, 0.0, 2.0));
+        let f = bad.verdict().failures();
+        assert_eq!(f.len(), 3, "{f:?}");
+    }
+}

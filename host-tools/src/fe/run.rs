@@ -1,0 +1,329 @@
+//! A whole analysis of a specimen: build, step to the end of the loading,
+//! sample and write output, judge the run, summarise.
+
+use super::explicit::Solver;
+use super::material::{BarMaterial, SolidMaterial};
+use super::mesh::Quality;
+use super::model::{Model, StepLimits};
+use super::output::{self, Csv, Sample, Station, TORQUE_TWIST_HEADER};
+use super::quasi_static::EnergyTrace;
+use super::rebar::embed;
+use super::specimen::Specimen;
+use anyhow::Context;
+use std::path::PathBuf;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::time::Instant;
+
+/// Choices made on the command line.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct RunOptions {
+    /// Directory for CSV and VTK output (nothing is written without one).
+    pub out: Option<PathBuf>,
+    /// Worker threads, overriding the specimen file.
+    pub threads: Option<usize>,
+    /// Element size in mm, overriding the specimen file.
+    pub element_size_mm: Option<f64>,
+}
+
+/// What the progress display shows.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Progress {
+    /// Steps taken.
+    pub step: u64,
+    /// Steps of the whole run.
+    pub steps: u64,
+    /// Time, s.
+    pub t: f64,
+    /// Torque, kN m.
+    pub torque_knm: f64,
+    /// Kinetic over internal energy now.
+    pub ke_ie: f64,
+}
+
+/// The summary of a run (`hyst fe --json`).
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+pub struct Summary {
+    /// Specimen name.
+    pub specimen: String,
+    /// Constitutive models used.
+    pub materials: &'static str,
+    /// Whether the run was interrupted before the end of the loading.
+    pub interrupted: bool,
+    /// Hexahedra.
+    pub elements: usize,
+    /// Nodes.
+    pub nodes: usize,
+    /// Truss elements.
+    pub trusses: usize,
+    /// Element size, mm.
+    pub element_size_mm: f64,
+    /// Mesh quality.
+    pub mesh: Quality,
+    /// Stable steps and the step used.
+    pub time_step: StepLimits,
+    /// Physical mass, kg.
+    pub physical_mass_kg: f64,
+    /// Mass added by mass scaling, kg.
+    pub added_mass_kg: f64,
+    /// Added mass in percent of the physical mass.
+    pub added_mass_percent: f64,
+    /// Steps taken.
+    pub steps: u64,
+    /// Time reached, s.
+    pub time_s: f64,
+    /// Worker threads.
+    pub threads: usize,
+    /// Initial torsional stiffness, kN m/rad.
+    pub initial_stiffness: Option<f64>,
+    /// Saint-Venant `GJ/L` of the gross concrete section, kN m/rad.
+    pub saint_venant_stiffness: f64,
+    /// Cracking torque, kN m (none while the materials are elastic).
+    pub cracking_torque: Option<f64>,
+    /// Peak torque, kN m (none while the materials are elastic).
+    pub peak_torque: Option<f64>,
+    /// Largest torque reached, kN m.
+    pub max_torque: f64,
+    /// Largest kinetic / internal energy ratio in the judged window.
+    pub max_ke_ie_ratio: f64,
+    /// Largest hourglass share of the internal energy in the window.
+    pub max_hourglass_share: f64,
+    /// Largest relative energy imbalance in the window.
+    pub max_energy_imbalance: f64,
+    /// Whether all quasi-static checks hold.
+    pub quasi_static: bool,
+    /// The checks that failed.
+    pub failures: Vec<String>,
+    /// Files written.
+    pub outputs: Vec<PathBuf>,
+    /// Wall-clock time, s.
+    pub wall_s: f64,
+    /// Wall-clock time per element and step, ns.
+    pub ns_per_element_step: f64,
+}
+
+/// Runs a specimen with the given materials until the end of its loading
+/// or until `stop` is set; `progress` is called about every 0.2% of the
+/// run.
+pub fn run<M: SolidMaterial, B: BarMaterial>(
+    spec: &Specimen,
+    materials: &'static str,
+    solid: M,
+    bars: Vec<B>,
+    opts: &RunOptions,
+    stop: &AtomicBool,
+    mut progress: impl FnMut(&Progress),
+) -> anyhow::Result<Summary> {
+    let mut spec = spec.clone();
+    if let Some(h) = opts.element_size_mm {
+        anyhow::ensure!(
+            h.is_finite() && h > 0.0,
+            "--element-size must be a positive size in mm, found {h}"
+        );
+        spec.analysis.element_size_mm = h;
+    }
+    let threads = opts.threads.or(spec.analysis.threads).unwrap_or(2);
+    anyhow::ensure!(threads >= 1, "--threads must be at least 1");
+    let mesh = spec.mesh();
+    let quality = mesh.section.quality(mesh.dz);
+    let sets = spec.bar_sets();
+    let emb =
+        embed(&mesh, &sets).with_context(|| format!("embedding the bars of {}", spec.name))?;
+    let model = Model::new(mesh, solid, &sets, bars, emb, spec.settings());
+    let dt = model.dt();
+    let end = spec.end_time();
+    let steps = (end / dt).ceil() as u64;
+    let every = (steps / spec.output.samples as u64).max(1);
+    let vtk_every = spec
+        .output
+        .vtk_every_s
+        .map(|v| ((v / dt).round() as u64).max(1));
+    let mut s = Solver::new(model, spec.controls(), threads);
+    let stations = output::resolve_stations(&s, &spec.output.rebar_station);
+
+    let mut outputs = Vec::new();
+    let mut files = None;
+    if let Some(dir) = &opts.out {
+        std::fs::create_dir_all(dir).with_context(|| format!("creating {}", dir.display()))?;
+        let tt = dir.join("torque_twist.csv");
+        let rb = dir.join("rebar_strains.csv");
+        let csv = Csv::create(&tt, &TORQUE_TWIST_HEADER)
+            .with_context(|| format!("creating {}", tt.display()))?;
+        let mut header = vec!["time_s", "twist_rad", "torque_kNm"];
+        header.extend(stations.iter().map(|st: &Station| st.name.as_str()));
+        let rcsv =
+            Csv::create(&rb, &header).with_context(|| format!("creating {}", rb.display()))?;
+        outputs.push(tt);
+        outputs.push(rb);
+        files = Some((dir.clone(), csv, rcsv));
+    }
+    let mut vtk_index = 0;
+    let write_row = |s: &Solver<M, B>,
+                     files: &mut Option<(PathBuf, Csv, Csv)>,
+                     samples: &mut Vec<Sample>|
+     -> anyhow::Result<()> {
+        let smp = Sample::of(s);
+        samples.push(smp);
+        if let Some((_, csv, rcsv)) = files {
+            csv.row(&smp.row())?;
+            let mut r = vec![smp.t, smp.twist, smp.torque / 1e3];
+            r.extend(
+                stations
+                    .iter()
+                    .map(|st| s.model.truss_state[st.truss].strain),
+            );
+            rcsv.row(&r)?;
+        }
+        Ok(())
+    };
+    let mut write_vtk = |s: &Solver<M, B>,
+                         files: &Option<(PathBuf, Csv, Csv)>,
+                         outputs: &mut Vec<PathBuf>|
+     -> anyhow::Result<()> {
+        if let Some((dir, _, _)) = files {
+            outputs.extend(output::write_vtk(s, dir, vtk_index)?);
+            vtk_index += 1;
+        }
+        Ok(())
+    };
+
+    let mut samples = Vec::new();
+    let mut trace = EnergyTrace::default();
+    write_row(&s, &mut files, &mut samples)?;
+    if vtk_every.is_some() {
+        write_vtk(&s, &files, &mut outputs)?;
+    }
+    let report = (steps / 500).max(1);
+    let start = Instant::now();
+    let mut interrupted = false;
+    while s.steps < steps {
+        if stop.load(Ordering::Relaxed) {
+            interrupted = true;
+            break;
+        }
+        s.step();
+        trace.push(s.t, s.energy);
+        if s.steps % every == 0 || s.steps == steps {
+            write_row(&s, &mut files, &mut samples)?;
+        }
+        if vtk_every.is_some_and(|v| s.steps % v == 0) {
+            write_vtk(&s, &files, &mut outputs)?;
+        }
+        if s.steps % report == 0 {
+            progress(&Progress {
+                step: s.steps,
+                steps,
+                t: s.t,
+                torque_knm: s.top.reaction[super::explicit::dof::RZ] / 1e3,
+                ke_ie: s.energy.kinetic / s.energy.internal(),
+            });
+        }
+    }
+    let wall = start.elapsed().as_secs_f64();
+    if interrupted {
+        write_row(&s, &mut files, &mut samples)?;
+    }
+    let verdict = trace.verdict();
+    let failures = verdict.failures();
+    let m = &s.model;
+    Ok(Summary {
+        specimen: spec.name.clone(),
+        materials,
+        interrupted,
+        elements: m.elements(),
+        nodes: m.mesh.nodes.len(),
+        trusses: m.embedding.trusses.len(),
+        element_size_mm: spec.analysis.element_size_mm,
+        mesh: quality,
+        time_step: m.limits,
+        physical_mass_kg: m.physical_mass,
+        added_mass_kg: m.added_mass,
+        added_mass_percent: 100.0 * m.added_mass / m.physical_mass,
+        steps: s.steps,
+        time_s: s.t,
+        threads,
+        initial_stiffness: output::secant_stiffness(&samples, 0.2, 1.0).map(|k| k / 1e3),
+        saint_venant_stiffness: spec.saint_venant_stiffness() / 1e3,
+        cracking_torque: None,
+        peak_torque: None,
+        max_torque: samples.iter().fold(0.0f64, |a, x| a.max(x.torque.abs())) / 1e3,
+        max_ke_ie_ratio: verdict.max_ke_ie_ratio,
+        max_hourglass_share: verdict.max_hourglass_share,
+        max_energy_imbalance: verdict.max_imbalance,
+        quasi_static: failures.is_empty(),
+        failures,
+        outputs,
+        wall_s: wall,
+        ns_per_element_step: wall * 1e9 / (s.steps.max(1) as f64 * m.elements() as f64),
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::fe::material::Elastic;
+    use std::path::Path;
+
+    #[test]
+    fn an_interrupted_run_keeps_complete_files_and_says_so() {
+        let p = Path::new(env!("CARGO_MANIFEST_DIR")).join("../specimens/tp-92.toml");
+        let spec = Specimen::load(&p).expect("specimen");
+        let dir = std::env::temp_dir().join(format!("hyst-fe-interrupt-{}", std::process::id()));
+        let opts = RunOptions {
+            out: Some(dir.clone()),
+            threads: Some(1),
+            element_size_mm: Some(100.0),
+        };
+        let stop = AtomicBool::new(false);
+        let mut calls = 0;
+        let s = run(
+            &spec,
+            "elastic",
+            Elastic::new(spec.concrete()),
+            spec.steel(),
+            &opts,
+            &stop,
+            |p| {
+                calls += 1;
+                if p.step * 3 > p.steps {
+                    stop.store(true, Ordering::Relaxed);
+                }
+            },
+        )
+        .expect("run");
+        assert!(s.interrupted && calls > 0);
+        assert!(s.time_s < spec.end_time());
+        let csv = std::fs::read_to_string(dir.join("torque_twist.csv")).expect("csv");
+        let rows: Vec<&str> = csv.lines().collect();
+        assert!(rows.len() > 10);
+        assert!(rows
+            .iter()
+            .all(|r| r.split(',').count() == TORQUE_TWIST_HEADER.len()));
+        let last: Vec<f64> = rows[rows.len() - 1]
+            .split(',')
+            .map(|v| v.parse().expect("number"))
+            .collect();
+        assert!(
+            (last[0] - s.time_s).abs() < 1e-8 * s.time_s,
+            "{} vs {}",
+            last[0],
+            s.time_s
+        );
+        let vtk: Vec<_> = s
+            .outputs
+            .iter()
+            .filter(|o| o.extension().is_some_and(|e| e == "vtk"))
+            .collect();
+        assert!(vtk.len() >= 2);
+        for f in vtk {
+            let text = std::fs::read_to_string(f).expect("vtk");
+            assert!(text.starts_with("# vtk DataFile Version 3.0"));
+            assert!(text.contains("CELL_DATA"));
+        }
+        assert!(std::fs::read_dir(&dir).expect("dir").all(|e| !e
+            .expect("entry")
+            .path()
+            .to_string_lossy()
+            .ends_with(".part")));
+        std::fs::remove_dir_all(&dir).ok();
+    }
+}

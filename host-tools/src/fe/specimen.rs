@@ -1,0 +1,776 @@
+//! Specimen files: a reinforced-concrete column, its loading and the
+//! numerical settings, in TOML. Every input the thesis does not give is
+//! listed in the file's `[assumed]` table with its source. Errors name the
+//! file, line and column and what was expected.
+//!
+//! ```toml
+//! name = "TP-91"
+//! [section]      # shape = "circular" | "square"; size = diameter or width
+//! [column]       # height_m: the modelled height, fixed base to rigid top
+//! [concrete]     # fc_mpa; elastic_modulus_mpa (default 4700 sqrt(fc)), poisson, density
+//! [longitudinal] # count, bar_diameter_mm, yield_mpa
+//! [transverse]   # kind = "spiral" | "hoops", bar_diameter_mm, spacing_mm, yield_mpa
+//! [steel]        # elastic_modulus_mpa, density_kg_m3
+//! [loading]      # axial_force_kn, axial_ramp_s, twist = [[s, rad], ...], interpolation
+//! [analysis]     # element_size_mm, hourglass_scale, bulk_viscosity, dt_safety, mass_scaling_dt_s, threads
+//! [output]       # samples, vtk_every_s, [[output.rebar_station]]
+//! [reference]    # Table 1.1 ratios, checked against the bar layout
+//! [assumed]      # "key" = "why and from where"
+//! ```
+
+use super::explicit::{dof, Control};
+use super::history::{History, Interpolation};
+use super::material::{ElasticBar, Isotropic};
+use super::mesh::{Mesh, Section};
+use super::model::Settings;
+use super::rebar::{self, BarSet};
+use serde::Deserialize;
+use std::collections::BTreeMap;
+use std::f64::consts::PI;
+use std::path::{Path, PathBuf};
+
+/// Cross-section shape.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize, serde::Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Shape {
+    /// Circular, `size_mm` the diameter.
+    Circular,
+    /// Square, `size_mm` the width.
+    Square,
+}
+
+/// The cross-section.
+#[derive(Clone, Debug, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SectionSpec {
+    /// Shape.
+    pub shape: Shape,
+    /// Diameter or width, mm.
+    pub size_mm: f64,
+    /// Clear cover to the transverse steel, mm.
+    pub clear_cover_mm: f64,
+}
+
+/// Column heights.
+#[derive(Clone, Debug, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ColumnSpec {
+    /// Modelled height between the fixed base and the rigid top, m.
+    pub height_m: f64,
+    /// Total height of the test column (information), m.
+    pub total_height_m: Option<f64>,
+}
+
+/// Concrete.
+#[derive(Clone, Debug, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ConcreteSpec {
+    /// Cylinder strength, MPa.
+    pub fc_mpa: f64,
+    /// Young's modulus, MPa (default `4700 sqrt(fc)`, ACI 318).
+    pub elastic_modulus_mpa: Option<f64>,
+    /// Poisson's ratio.
+    pub poisson: f64,
+    /// Density, kg/m^3.
+    pub density_kg_m3: f64,
+}
+
+/// Longitudinal bars.
+#[derive(Clone, Debug, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct LongitudinalSpec {
+    /// Number of bars (a multiple of 4 for squares: corners and equal
+    /// numbers along each face).
+    pub count: usize,
+    /// Bar diameter, mm.
+    pub bar_diameter_mm: f64,
+    /// Yield strength, MPa.
+    pub yield_mpa: f64,
+}
+
+/// Kind of transverse reinforcement.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize, serde::Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum TransverseKind {
+    /// A continuous helix (circular sections).
+    Spiral,
+    /// Closed hoops (circular or square).
+    Hoops,
+}
+
+/// Transverse bars.
+#[derive(Clone, Debug, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct TransverseSpec {
+    /// Spiral or hoops.
+    pub kind: TransverseKind,
+    /// Bar diameter, mm.
+    pub bar_diameter_mm: f64,
+    /// Pitch or spacing, mm.
+    pub spacing_mm: f64,
+    /// Yield strength, MPa.
+    pub yield_mpa: f64,
+}
+
+/// Steel properties common to all bars (thesis 2.2.2).
+#[derive(Clone, Debug, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SteelSpec {
+    /// Young's modulus, MPa.
+    pub elastic_modulus_mpa: f64,
+    /// Density, kg/m^3.
+    pub density_kg_m3: f64,
+}
+
+/// Loading (thesis 2.5): a constant axial force applied first, then the
+/// twist history at the top reference point.
+#[derive(Clone, Debug, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct LoadingSpec {
+    /// Axial compression, kN.
+    pub axial_force_kn: f64,
+    /// Time over which the axial force is brought on, s.
+    pub axial_ramp_s: f64,
+    /// Twist history `[time s, twist rad]`, time counted from the end of
+    /// the axial ramp.
+    pub twist: Vec<[f64; 2]>,
+    /// Interpolation of the twist table.
+    pub interpolation: Interpolation,
+}
+
+/// Numerical settings.
+#[derive(Clone, Debug, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct AnalysisSpec {
+    /// Element size, mm.
+    pub element_size_mm: f64,
+    /// Hourglass stiffness scale (see [`Settings::hourglass_scale`]).
+    pub hourglass_scale: f64,
+    /// Bulk viscosity `[b1, b2]`.
+    pub bulk_viscosity: [f64; 2],
+    /// Fraction of the stable step used.
+    pub dt_safety: f64,
+    /// Mass-scaling target step, s.
+    pub mass_scaling_dt_s: Option<f64>,
+    /// Worker threads (default 2).
+    pub threads: Option<usize>,
+}
+
+/// A rebar strain station: the truss of a bar set nearest to a height and
+/// an angle around the axis.
+#[derive(Clone, Debug, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct StationSpec {
+    /// Column name in the CSV.
+    pub name: String,
+    /// `longitudinal` or `transverse`.
+    pub set: String,
+    /// Height above the base, m.
+    pub z_m: f64,
+    /// Angle from the x axis, degrees.
+    pub angle_deg: f64,
+}
+
+/// Output settings.
+#[derive(Clone, Debug, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct OutputSpec {
+    /// Rows of the torque-twist CSV over the run.
+    pub samples: usize,
+    /// Interval between VTK snapshots, s (none when absent).
+    pub vtk_every_s: Option<f64>,
+    /// Rebar strain stations.
+    #[serde(default)]
+    pub rebar_station: Vec<StationSpec>,
+}
+
+/// Reference values of thesis Table 1.1, checked against the layout.
+#[derive(Clone, Debug, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ReferenceSpec {
+    /// Longitudinal steel ratio, percent.
+    pub longitudinal_ratio_pct: f64,
+    /// Transverse (volumetric) steel ratio, percent.
+    pub transverse_ratio_pct: f64,
+}
+
+/// A specimen file.
+#[derive(Clone, Debug, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Specimen {
+    /// Specimen name.
+    pub name: String,
+    /// Where the data come from.
+    pub source: String,
+    /// Cross-section.
+    pub section: SectionSpec,
+    /// Heights.
+    pub column: ColumnSpec,
+    /// Concrete.
+    pub concrete: ConcreteSpec,
+    /// Longitudinal bars.
+    pub longitudinal: LongitudinalSpec,
+    /// Transverse bars.
+    pub transverse: TransverseSpec,
+    /// Steel.
+    pub steel: SteelSpec,
+    /// Loading.
+    pub loading: LoadingSpec,
+    /// Numerical settings.
+    pub analysis: AnalysisSpec,
+    /// Output.
+    pub output: OutputSpec,
+    /// Table 1.1 values.
+    pub reference: ReferenceSpec,
+    /// Inputs the thesis does not give: key path -> source.
+    pub assumed: BTreeMap<String, String>,
+}
+
+/// An error in a specimen file, with its place.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SpecError {
+    /// The file.
+    pub file: PathBuf,
+    /// Line, from 1.
+    pub line: usize,
+    /// Column, from 1.
+    pub column: usize,
+    /// What is wrong and what was expected.
+    pub message: String,
+}
+
+impl std::fmt::Display for SpecError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "{}:{}:{}: {}",
+            self.file.display(),
+            self.line,
+            self.column,
+            self.message
+        )
+    }
+}
+
+impl std::error::Error for SpecError {}
+
+fn line_col(src: &str, offset: usize) -> (usize, usize) {
+    let before = &src[..offset.min(src.len())];
+    let line = before.matches('\n').count() + 1;
+    let col = before
+        .rfind('\n')
+        .map_or(before.len(), |p| before.len() - p - 1)
+        + 1;
+    (line, col)
+}
+
+/// Byte offset of the value at a dotted key path (numeric segments index
+/// arrays), or of the deepest table on the path that exists.
+fn locate(src: &str, path: &str) -> usize {
+    let Ok(doc) = toml_edit::ImDocument::parse(src) else {
+        return 0;
+    };
+    let mut item = doc.as_item();
+    let mut at = 0;
+    for seg in path.split('.') {
+        let next = match seg.parse::<usize>() {
+            Ok(i) => item.get(i),
+            Err(_) => item.get(seg),
+        };
+        match next {
+            Some(n) => {
+                item = n;
+                if let Some(s) = n.span() {
+                    at = s.start;
+                }
+            }
+            None => break,
+        }
+    }
+    at
+}
+
+impl Specimen {
+    /// Reads and checks a specimen file.
+    pub fn load(path: &Path) -> Result<Specimen, SpecError> {
+        let src = std::fs::read_to_string(path).map_err(|e| SpecError {
+            file: path.to_owned(),
+            line: 1,
+            column: 1,
+            message: format!("cannot read the specimen file: {e}"),
+        })?;
+        Specimen::parse(&src, path)
+    }
+
+    /// Parses and checks specimen text; `file` names it in errors.
+    pub fn parse(src: &str, file: &Path) -> Result<Specimen, SpecError> {
+        let spec: Specimen = toml::from_str(src).map_err(|e| {
+            let (line, column) = e.span().map_or((1, 1), |s| line_col(src, s.start));
+            SpecError {
+                file: file.to_owned(),
+                line,
+                column,
+                message: e.message().to_string(),
+            }
+        })?;
+        spec.check().map_err(|(path, expected)| {
+            let (line, column) = line_col(src, locate(src, path));
+            SpecError {
+                file: file.to_owned(),
+                line,
+                column,
+                message: format!("`{path}`: expected {expected}"),
+            }
+        })?;
+        Ok(spec)
+    }
+
+    fn check(&self) -> Result<(), (&'static str, String)> {
+        fn pos(v: f64, path: &'static str, what: &str) -> Result<(), (&'static str, String)> {
+            if v.is_finite() && v > 0.0 {
+                Ok(())
+            } else {
+                Err((path, format!("{what} (a positive number), found {v}")))
+            }
+        }
+        let s = &self.section;
+        pos(s.size_mm, "section.size_mm", "the diameter or width in mm")?;
+        if !(s.clear_cover_mm >= 0.0) {
+            return Err(("section.clear_cover_mm", "a cover of 0 mm or more".into()));
+        }
+        pos(
+            self.column.height_m,
+            "column.height_m",
+            "the modelled height in m",
+        )?;
+        let c = &self.concrete;
+        pos(c.fc_mpa, "concrete.fc_mpa", "the cylinder strength in MPa")?;
+        if let Some(e) = c.elastic_modulus_mpa {
+            pos(e, "concrete.elastic_modulus_mpa", "Young's modulus in MPa")?;
+        }
+        if !(c.poisson >= 0.0 && c.poisson < 0.5) {
+            return Err((
+                "concrete.poisson",
+                format!("a Poisson's ratio in [0, 0.5), found {}", c.poisson),
+            ));
+        }
+        pos(
+            c.density_kg_m3,
+            "concrete.density_kg_m3",
+            "the density in kg/m^3",
+        )?;
+        let l = &self.longitudinal;
+        pos(
+            l.bar_diameter_mm,
+            "longitudinal.bar_diameter_mm",
+            "the bar diameter in mm",
+        )?;
+        pos(
+            l.yield_mpa,
+            "longitudinal.yield_mpa",
+            "the yield strength in MPa",
+        )?;
+        let bad_count = match s.shape {
+            Shape::Circular => l.count < 3,
+            Shape::Square => l.count < 4 || l.count % 4 != 0,
+        };
+        if bad_count {
+            return Err((
+                "longitudinal.count",
+                format!(
+                    "at least 3 bars (circular) or a multiple of 4 (square), found {}",
+                    l.count
+                ),
+            ));
+        }
+        let t = &self.transverse;
+        pos(
+            t.bar_diameter_mm,
+            "transverse.bar_diameter_mm",
+            "the bar diameter in mm",
+        )?;
+        pos(
+            t.spacing_mm,
+            "transverse.spacing_mm",
+            "the pitch or spacing in mm",
+        )?;
+        pos(
+            t.yield_mpa,
+            "transverse.yield_mpa",
+            "the yield strength in MPa",
+        )?;
+        if s.shape == Shape::Square && t.kind == TransverseKind::Spiral {
+            return Err(("transverse.kind", "\"hoops\" for a square section".into()));
+        }
+        let inner = s.size_mm - 2.0 * (s.clear_cover_mm + t.bar_diameter_mm + l.bar_diameter_mm);
+        if !(inner > 0.0) {
+            return Err((
+                "section.clear_cover_mm",
+                "cover and bars that fit inside the section".into(),
+            ));
+        }
+        pos(
+            self.steel.elastic_modulus_mpa,
+            "steel.elastic_modulus_mpa",
+            "Young's modulus in MPa",
+        )?;
+        pos(
+            self.steel.density_kg_m3,
+            "steel.density_kg_m3",
+            "the density in kg/m^3",
+        )?;
+        let ld = &self.loading;
+        if !(ld.axial_force_kn.is_finite() && ld.axial_force_kn >= 0.0) {
+            return Err((
+                "loading.axial_force_kn",
+                "a compression of 0 kN or more".into(),
+            ));
+        }
+        if ld.axial_force_kn > 0.0 {
+            pos(
+                ld.axial_ramp_s,
+                "loading.axial_ramp_s",
+                "the time to apply the axial force in s",
+            )?;
+        }
+        if ld.twist.len() < 2 || ld.twist[0][0] != 0.0 {
+            return Err((
+                "loading.twist",
+                "a table of at least two [time s, twist rad] rows starting at time 0".into(),
+            ));
+        }
+        for w in ld.twist.windows(2) {
+            if !(w[1][0] > w[0][0]) || !w[1][1].is_finite() {
+                return Err((
+                    "loading.twist",
+                    "strictly increasing times and finite twists".into(),
+                ));
+            }
+        }
+        let a = &self.analysis;
+        pos(
+            a.element_size_mm,
+            "analysis.element_size_mm",
+            "the element size in mm",
+        )?;
+        if !(a.hourglass_scale >= 0.0) {
+            return Err(("analysis.hourglass_scale", "a scale of 0 or more".into()));
+        }
+        if !(a.bulk_viscosity[0] >= 0.0 && a.bulk_viscosity[1] >= 0.0) {
+            return Err(("analysis.bulk_viscosity", "[b1, b2], both 0 or more".into()));
+        }
+        if !(a.dt_safety > 0.0 && a.dt_safety <= 1.0) {
+            return Err(("analysis.dt_safety", "a fraction in (0, 1]".into()));
+        }
+        if let Some(m) = a.mass_scaling_dt_s {
+            pos(m, "analysis.mass_scaling_dt_s", "a target time step in s")?;
+        }
+        if a.threads == Some(0) {
+            return Err(("analysis.threads", "at least one thread".into()));
+        }
+        if self.output.samples < 2 {
+            return Err(("output.samples", "at least 2 rows".into()));
+        }
+        if let Some(v) = self.output.vtk_every_s {
+            pos(v, "output.vtk_every_s", "an interval in s")?;
+        }
+        for st in &self.output.rebar_station {
+            if st.set != "longitudinal" && st.set != "transverse" {
+                return Err((
+                    "output.rebar_station",
+                    format!("set \"longitudinal\" or \"transverse\", found {:?}", st.set),
+                ));
+            }
+            if !(st.z_m >= 0.0 && st.z_m <= self.column.height_m) {
+                return Err((
+                    "output.rebar_station",
+                    format!("z_m within the column height, found {}", st.z_m),
+                ));
+            }
+        }
+        Ok(())
+    }
+
+    /// Element size, m.
+    pub fn element_size(&self) -> f64 {
+        self.analysis.element_size_mm / 1000.0
+    }
+
+    /// The concrete's elastic properties.
+    pub fn concrete(&self) -> Isotropic {
+        let c = &self.concrete;
+        let e = c.elastic_modulus_mpa.unwrap_or(4700.0 * c.fc_mpa.sqrt());
+        Isotropic {
+            e: e * 1e6,
+            nu: c.poisson,
+            density: c.density_kg_m3,
+        }
+    }
+
+    /// Elastic steel, one per bar set (longitudinal, transverse).
+    pub fn steel(&self) -> Vec<ElasticBar> {
+        let s = ElasticBar {
+            e: self.steel.elastic_modulus_mpa * 1e6,
+            density: self.steel.density_kg_m3,
+        };
+        vec![s, s]
+    }
+
+    /// The mesh at `element_size_mm`.
+    pub fn mesh(&self) -> Mesh {
+        let h = self.element_size();
+        let size = self.section.size_mm / 1000.0;
+        let section = match self.section.shape {
+            Shape::Circular => Section::circle(size / 2.0, h),
+            Shape::Square => Section::square(size, h),
+        };
+        Mesh::extrude(section, self.column.height_m, h)
+    }
+
+    fn radii(&self) -> (f64, f64) {
+        let half = self.section.size_mm / 2000.0;
+        let c = self.section.clear_cover_mm / 1000.0;
+        let dt = self.transverse.bar_diameter_mm / 1000.0;
+        let dl = self.longitudinal.bar_diameter_mm / 1000.0;
+        // Centre lines of the longitudinal bars and of the transverse bars.
+        (half - c - dt - dl / 2.0, half - c - dt / 2.0)
+    }
+
+    /// The bar sets `[longitudinal, transverse]`, in segments of the
+    /// element size.
+    pub fn bar_sets(&self) -> Vec<BarSet> {
+        let h = self.element_size();
+        let height = self.column.height_m;
+        let (rl, rt) = self.radii();
+        let l = &self.longitudinal;
+        let pts: Vec<(f64, f64)> = match self.section.shape {
+            Shape::Circular => (0..l.count)
+                .map(|k| {
+                    let th = 2.0 * PI * k as f64 / l.count as f64;
+                    (rl * th.cos(), rl * th.sin())
+                })
+                .collect(),
+            Shape::Square => {
+                let per = l.count / 4;
+                let corners = [(-rl, -rl), (rl, -rl), (rl, rl), (-rl, rl)];
+                (0..4)
+                    .flat_map(|c| {
+                        let p = corners[c];
+                        let q = corners[(c + 1) % 4];
+                        (0..per).map(move |i| {
+                            let s = i as f64 / per as f64;
+                            (p.0 + s * (q.0 - p.0), p.1 + s * (q.1 - p.1))
+                        })
+                    })
+                    .collect()
+            }
+        };
+        let long = BarSet {
+            name: "longitudinal".into(),
+            area: PI * (l.bar_diameter_mm / 1000.0).powi(2) / 4.0,
+            bars: pts
+                .iter()
+                .map(|&(x, y)| rebar::vertical(x, y, 0.0, height, h))
+                .collect(),
+        };
+        let t = &self.transverse;
+        let s = t.spacing_mm / 1000.0;
+        let levels: Vec<f64> = (0..)
+            .map(|k| s / 2.0 + k as f64 * s)
+            .take_while(|&z| z < height)
+            .collect();
+        let bars = match (self.section.shape, t.kind) {
+            (_, TransverseKind::Spiral) => vec![rebar::helix(rt, s, 0.0, height, h)],
+            (Shape::Circular, TransverseKind::Hoops) => levels
+                .iter()
+                .map(|&z| rebar::circular_hoop(rt, z, h))
+                .collect(),
+            (Shape::Square, TransverseKind::Hoops) => levels
+                .iter()
+                .map(|&z| rebar::square_hoop(rt, z, h))
+                .collect(),
+        };
+        let trans = BarSet {
+            name: "transverse".into(),
+            area: PI * (t.bar_diameter_mm / 1000.0).powi(2) / 4.0,
+            bars,
+        };
+        vec![long, trans]
+    }
+
+    /// Longitudinal ratio `n A_b / A_g` and transverse volumetric ratio
+    /// (`4 A_t / (d_c s)` with `d_c` the centre-line diameter or width of
+    /// the spiral or hoop), as fractions.
+    pub fn steel_ratios(&self) -> (f64, f64) {
+        let d = self.section.size_mm;
+        let ag = match self.section.shape {
+            Shape::Circular => PI * d * d / 4.0,
+            Shape::Square => d * d,
+        };
+        let ab = PI * self.longitudinal.bar_diameter_mm.powi(2) / 4.0;
+        let at = PI * self.transverse.bar_diameter_mm.powi(2) / 4.0;
+        let dc = 2.0 * self.radii().1 * 1000.0;
+        (
+            self.longitudinal.count as f64 * ab / ag,
+            4.0 * at / (dc * self.transverse.spacing_mm),
+        )
+    }
+
+    /// Saint-Venant torsional stiffness `G J / L` of the gross concrete
+    /// section, N m/rad (`J = pi D^4 / 32` or `0.1406 b^4`).
+    pub fn saint_venant_stiffness(&self) -> f64 {
+        let d = self.section.size_mm / 1000.0;
+        let j = match self.section.shape {
+            Shape::Circular => PI * d.powi(4) / 32.0,
+            Shape::Square => {
+                let mut s = 0.0;
+                for n in 0..50 {
+                    let m = (2 * n + 1) as f64;
+                    s += (m * PI / 2.0).tanh() / m.powi(5);
+                }
+                d.powi(4) * (1.0 / 3.0 - 64.0 / PI.powi(5) * s)
+            }
+        };
+        self.concrete().shear_modulus() * j / self.column.height_m
+    }
+
+    /// Start of the twist, s.
+    pub fn twist_start(&self) -> f64 {
+        if self.loading.axial_force_kn > 0.0 {
+            self.loading.axial_ramp_s
+        } else {
+            0.0
+        }
+    }
+
+    /// End of the analysis, s.
+    pub fn end_time(&self) -> f64 {
+        self.twist_start() + self.loading.twist.last().map_or(0.0, |p| p[0])
+    }
+
+    /// Control of the top reference point: twist driven, axial force
+    /// applied (smooth step), the other four degrees of freedom free.
+    pub fn controls(&self) -> [Control; 6] {
+        let t0 = self.twist_start();
+        let mut c: [Control; 6] = std::array::from_fn(|_| Control::free());
+        let mut twist = vec![(0.0, 0.0)];
+        twist.extend(self.loading.twist.iter().map(|p| (t0 + p[0], p[1])));
+        twist.dedup_by(|b, a| a.0 == b.0);
+        c[dof::RZ] = Control::Motion(History::new(twist, self.loading.interpolation));
+        let p = -self.loading.axial_force_kn * 1e3;
+        c[dof::UZ] = Control::Force(if p == 0.0 {
+            History::constant(0.0)
+        } else {
+            History::new(vec![(0.0, 0.0), (t0, p)], Interpolation::SmoothStep)
+        });
+        c
+    }
+
+    /// Numerical settings.
+    pub fn settings(&self) -> Settings {
+        let a = &self.analysis;
+        Settings {
+            hourglass_scale: a.hourglass_scale,
+            bulk_linear: a.bulk_viscosity[0],
+            bulk_quadratic: a.bulk_viscosity[1],
+            dt_safety: a.dt_safety,
+            mass_scaling_dt: a.mass_scaling_dt_s,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn specimens() -> Vec<(PathBuf, Specimen)> {
+        let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../specimens");
+        ["tp-91", "tp-92", "hd6-0.73", "hd3-1.32", "missouri-square"]
+            .iter()
+            .map(|n| {
+                let p = dir.join(format!("{n}.toml"));
+                let s = Specimen::load(&p).unwrap_or_else(|e| panic!("{e}"));
+                (p, s)
+            })
+            .collect()
+    }
+
+    #[test]
+    fn specimen_layouts_reproduce_table_1_1_ratios() {
+        for (p, s) in specimens() {
+            let (rl, rt) = s.steel_ratios();
+            let r = &s.reference;
+            let el = 100.0 * rl / r.longitudinal_ratio_pct - 1.0;
+            let et = 100.0 * rt / r.transverse_ratio_pct - 1.0;
+            assert!(
+                el.abs() < 0.03,
+                "{}: longitudinal {:.3}% vs {}%",
+                p.display(),
+                100.0 * rl,
+                r.longitudinal_ratio_pct
+            );
+            assert!(
+                et.abs() < 0.03,
+                "{}: transverse {:.3}% vs {}%",
+                p.display(),
+                100.0 * rt,
+                r.transverse_ratio_pct
+            );
+        }
+    }
+
+    #[test]
+    fn specimen_elastic_stiffness_is_issue_8_gj_over_l() {
+        // Issue 8: GJ/L from Table 1.1 with Ec = 4700 sqrt(fc'), nu = 0.2.
+        let want = [27_800.0, 27_800.0, 44_900.0, 76_900.0, 47_500.0];
+        for ((p, s), w) in specimens().into_iter().zip(want) {
+            let k = s.saint_venant_stiffness() / 1e3;
+            assert!(
+                (k / w - 1.0).abs() < 0.005,
+                "{}: {k:.0} vs {w}",
+                p.display()
+            );
+        }
+    }
+
+    #[test]
+    fn assumed_keys_name_inputs_of_the_file() {
+        for (p, s) in specimens() {
+            assert!(!s.assumed.is_empty());
+            let src = std::fs::read_to_string(&p).expect("read");
+            for key in s.assumed.keys() {
+                let last = key.rsplit('.').next().unwrap_or(key);
+                assert!(
+                    locate(&src, key) > 0 && src.contains(last),
+                    "{}: {key}",
+                    p.display()
+                );
+            }
+            // Every bar lies inside the concrete.
+            let mesh = s.mesh();
+            rebar::embed(&mesh, &s.bar_sets()).unwrap_or_else(|e| panic!("{}: {e}", p.display()));
+        }
+    }
+
+    #[test]
+    fn errors_name_line_column_and_expectation() {
+        let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../specimens/tp-91.toml");
+        let src = std::fs::read_to_string(&dir).expect("read");
+        let bad = src.replacen("size_mm = 400.0", "size_mm = -400.0", 1);
+        let e = Specimen::parse(&bad, Path::new("x.toml")).expect_err("negative size");
+        let line = bad
+            .lines()
+            .position(|l| l.contains("size_mm = -400.0"))
+            .map(|i| i + 1);
+        assert_eq!(Some(e.line), line, "{e}");
+        assert!(e.to_string().starts_with("x.toml:"), "{e}");
+        assert!(
+            e.message.contains("section.size_mm") && e.message.contains("positive"),
+            "{e}"
+        );
+        let typo = src.replacen("fc_mpa", "fc_mp", 1);
+        let e = Specimen::parse(&typo, Path::new("x.toml")).expect_err("unknown key");
+        assert!(e.message.contains("fc_mp"), "{e}");
+        assert!(e.line > 1);
+    }
+}
