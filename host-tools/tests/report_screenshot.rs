@@ -174,3 +174,88 @@ fn sample_report_renders_in_headless_chromium() {
         );
     }
 }
+
+/// The page `hyst discover --report` writes, for the record with hidden
+/// pinching: it must render whole, with the measured loops (grey), the
+/// first and final models side by side (blue, vermillion) and the branch
+/// colours of the residual map.
+#[test]
+fn discovery_report_renders_in_headless_chromium() {
+    let Some(browser) = chromium() else {
+        eprintln!("SKIPPED discovery_report_renders_in_headless_chromium: no chromium on PATH");
+        return;
+    };
+    use hyst::discover::{discover, page, WeighOptions};
+    use hyst::fit::problem::Problem;
+    use hyst::fit::run::{self, Method, Quiet};
+    let path = format!(
+        "{}/../../shared/data/synthetic/s1_hidden_pinching.csv",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    let record = hyst::data::read(&path, &Default::default()).unwrap();
+    let exp = hyst::fit::experiment::Experiment::from_record(&record, None).unwrap();
+    let problem = Problem::new(hyst::model::ModelSpec::BW, exp, &[]).unwrap();
+    let outcome = run::fit(&problem, Method::Auto, &problem.par.default_start(), &Quiet).unwrap();
+    let found = discover(problem, outcome, &WeighOptions::default(), |_| {}).unwrap();
+    assert_eq!(found.rungs.len(), 2, "bw, then bw+pinching");
+    let units = page::Units {
+        displacement: "mm",
+        force: "kN",
+    };
+    let report = page::discovery_page("Discovery on s1", &found, &units).unwrap();
+
+    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("discovery-screenshot");
+    let profile = dir.join("profile");
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&profile).unwrap();
+    let html = dir.join("discovery.html");
+    let png_path = dir.join("discovery.png");
+    report.write(&html).unwrap();
+    let text = std::fs::read_to_string(&html).unwrap();
+    assert!(
+        !text.contains("http://") && !text.contains("https://") && !text.contains("<script"),
+        "self-contained"
+    );
+    for figure in [
+        "ladder",
+        "Before and after",
+        "Hysteresis loops",
+        "Residual",
+        "per cycle",
+    ] {
+        assert!(
+            text.to_lowercase().contains(&figure.to_lowercase()),
+            "missing {figure}"
+        );
+    }
+    screenshot(&browser, &html, &png_path, &profile);
+    eprintln!("screenshot: {}", png_path.display());
+    let img = decode(&png_path);
+    assert_eq!((img.width, img.height), (WIDTH, HEIGHT));
+    let white = Colour(255, 255, 255);
+    let colours = [
+        ("measured grey", style::MEASURED),
+        ("blue", style::BLUE),
+        ("vermillion", style::VERMILLION),
+    ];
+    let mut counts = [0usize; 3];
+    let mut inked = 0usize;
+    for &p in &img.rgb {
+        if near(p, white, 8) {
+            continue;
+        }
+        inked += 1;
+        if let Some(k) = colours.iter().position(|(_, c)| near(p, *c, 6)) {
+            counts[k] += 1;
+        }
+    }
+    let share = inked as f64 / img.rgb.len() as f64;
+    assert!(share > 0.03, "page looks blank: {:.2}% ink", 100.0 * share);
+    for ((name, colour), count) in colours.iter().zip(counts) {
+        eprintln!("{name} {colour}: {count} pixels");
+        assert!(
+            count >= 500,
+            "{name} ({colour}) barely present: {count} pixels"
+        );
+    }
+}

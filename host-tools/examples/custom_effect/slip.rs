@@ -76,7 +76,7 @@ impl CustomEffect for SlipEffect {
                 rule: Rule::NotAFraction,
             });
         }
-        if !(width > 0.0) {
+        if width.is_nan() || width <= 0.0 {
             return Err(ParamError {
                 field: "slip_width",
                 rule: Rule::NotPositive,

@@ -172,6 +172,7 @@ pub fn ladder_section(page: &mut Report, rungs: &[Rung]) -> Result<()> {
 pub fn discovery_page(title: &str, discovery: &Discovery, units: &Units) -> Result<Report> {
     let mut page = Report::new(title);
     ladder_section(&mut page, &discovery.rungs)?;
+    before_and_after(&mut page, discovery, units)?;
     for step in &discovery.steps {
         let name = step.spec.to_string();
         diagnosis_sections(
@@ -184,4 +185,49 @@ pub fn discovery_page(title: &str, discovery: &Discovery, units: &Units) -> Resu
         )?;
     }
     Ok(page)
+}
+
+/// The first and the final model over the measured loops, and the RMS error
+/// of every rung cycle by cycle: where the added effects took the error away.
+fn before_and_after(page: &mut Report, discovery: &Discovery, units: &Units) -> Result<()> {
+    let (Some(first), Some(last)) = (discovery.steps.first(), discovery.steps.last()) else {
+        return Ok(());
+    };
+    if discovery.steps.len() < 2 {
+        return Ok(());
+    }
+    let (du, fu) = (units.displacement, units.force);
+    let names: Vec<String> = discovery.steps.iter().map(|s| s.spec.to_string()).collect();
+    let d0 = &first.diagnosis;
+    let overlay = loop_overlay(
+        &[
+            Trace::measured("measured", &d0.displacement, &d0.force),
+            Trace::model(&names[0], &d0.displacement, d0.model_force()),
+            Trace::model(
+                &names[names.len() - 1],
+                &last.diagnosis.displacement,
+                last.diagnosis.model_force(),
+            ),
+        ],
+        Quantity::new("Displacement", du),
+        Quantity::new("Force", fu),
+    )?;
+    let rms: Vec<Vec<f64>> = discovery
+        .steps
+        .iter()
+        .map(|s| s.diagnosis.cycles.iter().map(|c| c.rms_error).collect())
+        .collect();
+    let signals: Vec<Signal> = names
+        .iter()
+        .zip(&rms)
+        .map(|(n, r)| Signal::model(n, fu, r))
+        .collect();
+    let errors = per_cycle_bars(Quantity::new("RMS error", fu), &signals)?;
+    page.section("Before and after")
+        .figure(
+            &overlay,
+            "Force against displacement: measured (grey), the first model and the final one.",
+        )
+        .figure(&errors, "RMS error per cycle of every model on the ladder.");
+    Ok(())
 }

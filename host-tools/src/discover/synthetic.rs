@@ -72,7 +72,7 @@ pub fn hidden_values(kind: EffectKind) -> &'static [(&'static str, f64)] {
             ("delta_psi", 0.0),
             ("lambda", 0.5),
         ],
-        EffectKind::StrengthDegradation => &[("delta_nu", 8e-4)],
+        EffectKind::StrengthDegradation => &[("delta_nu", 1.2e-3)],
         EffectKind::StiffnessDegradation => &[("delta_eta", 1e-3)],
         EffectKind::ADegradation => &[("delta_A", 1.5e-4)],
         EffectKind::Asymmetry => &[("asym_strength", 0.3)],
