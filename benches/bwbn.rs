@@ -1,0 +1,99 @@
+//! Host speed of the BWBN element in f64: steps per second on the OpenSees
+//! reference history (3601 displacement steps, 200 a cycle, 18 cycles up to
+//! 8 mm), for plain Bouc-Wen, pinching only (OpenSees' `BWBN`) and all four
+//! thesis effects, each with the default error-controlled integrator (force
+//! within 1e-6 of peak of the converged answer, `tests/bwbn_opensees.rs`) and
+//! with OpenSees' own scheme (one backward-Euler step per increment).
+//!
+//! `cargo bench --bench bwbn`; `benches/bwbn-vs-opensees.sh` runs it beside
+//! openseespy on the same history.
+
+use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
+use hysteresis::bwbn::{Bwbn, BwbnParams, Control, EffectKind, EffectSet, ZuRule};
+use hysteresis::Element;
+use std::hint::black_box;
+
+fn history() -> Vec<f64> {
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../shared/data/opensees-reference/history.csv"
+    );
+    let text = std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{path}: {e}"));
+    text.lines()
+        .skip(1)
+        .filter(|l| !l.trim().is_empty())
+        .map(|l| {
+            l.split(',')
+                .nth(1)
+                .and_then(|v| v.trim().parse().ok())
+                .expect("step,strain rows")
+        })
+        .collect()
+}
+
+/// The reference cases' parameters (`cases.json`): k0 6, alpha 0.2, n 1.2,
+/// beta 2, gamma -1, with the degradation of `BoucWen_degrade` and the
+/// pinching of `BWBN_pinch` switched on as `set` asks.
+fn params(set: EffectSet) -> BwbnParams<f64> {
+    let values: [(&str, f64); 14] = [
+        ("k0", 6.0),
+        ("alpha", 0.2),
+        ("n", 1.2),
+        ("beta", 2.0),
+        ("gamma", -1.0),
+        ("delta_A", 2e-4),
+        ("delta_nu", 5e-4),
+        ("delta_eta", 5e-4),
+        ("energy_limit", 4500.0),
+        ("zeta0", 0.9),
+        ("p", 0.01),
+        ("q", 0.1),
+        ("psi0", 0.2),
+        ("delta_psi", 5e-4),
+    ];
+    BwbnParams::from_named(set, |name| {
+        values
+            .iter()
+            .chain(&[("lambda", 0.5)])
+            .find(|(k, _)| *k == name)
+            .map(|(_, v)| *v)
+    })
+    .expect("valid reference parameters")
+    .with_zu_rule(ZuRule::OpenSees)
+}
+
+fn bench(c: &mut Criterion) {
+    let h = history();
+    let pinching = EffectSet::NONE.with(EffectKind::Pinching);
+    let cases = [
+        ("bw", EffectSet::NONE),
+        ("bw+pinching", pinching),
+        ("bwbn (all four)", EffectSet::BWBN),
+    ];
+    let schemes = [
+        ("default", Control::default_for()),
+        ("opensees-scheme", Control::opensees(1e-8, 100)),
+    ];
+    let mut group = c.benchmark_group("bwbn_reference_history_f64");
+    group.throughput(Throughput::Elements(h.len() as u64));
+    for (name, set) in cases {
+        let p = params(set);
+        for (scheme, control) in schemes {
+            group.bench_with_input(BenchmarkId::new(name, scheme), &h, |b, h| {
+                b.iter(|| {
+                    let mut el = Bwbn::with_extra(p, (), control);
+                    let mut acc = 0.0;
+                    for &u in h {
+                        acc += el.set_trial(black_box(u)).expect("step").force;
+                        el.commit();
+                    }
+                    acc
+                })
+            });
+        }
+    }
+    group.finish();
+}
+
+criterion_group!(benches, bench);
+criterion_main!(benches);
