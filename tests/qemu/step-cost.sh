@@ -21,5 +21,7 @@ for pair in thumbv7em-none-eabihf:mps2-an386 thumbv7m-none-eabi:mps2-an385; do
   echo "$target ($machine): instructions per step, reference history"
   paste -d' ' <(grep '^case' "$log/cases" | awk '{ print $2 }') \
     <(grep '^bench' "$log/plugin" | awk '{ print $3 }') |
-    awk '{ printf "  %-28s %8.0f\n", $1, $2 / 3600 }'
+    awk '$1 ~ /\/step$/ { n[$1]++; sum[$1] += $2; if ($2 > max[$1]) max[$1] = $2; next }
+         { printf "  %-28s %8.0f\n", $1, $2 / 3600 }
+         END { for (k in n) printf "  %-28s mean %.0f, worst %d (%d steps, markers included)\n", k, sum[k] / n[k], max[k], n[k] }'
 done

@@ -4,7 +4,9 @@
 //!
 //! Each case steps a fresh element over the 3600 increments of the history
 //! between the markers `bench_start` and `bench_stop`, after printing `case
-//! NAME`; `step-cost.sh` divides the count by 3600.
+//! NAME`; `step-cost.sh` divides the count by 3600. The default all-four
+//! cases then run once more with the markers around every single step, for
+//! the worst step.
 #![no_std]
 #![no_main]
 
@@ -41,6 +43,22 @@ fn case<S: Scalar>(name: &str, set: Set, control: Control<S>) {
     bench_stop();
 }
 
+/// The same history with the markers around each step, one `case NAME/step`
+/// line per step: `step-cost.sh` reports the mean and the worst step.
+fn per_step<S: Scalar>(set: Set) {
+    let mut el = Bwbn::<S>::new(black_box(set.params_q16()));
+    for i in 1..POINTS {
+        defmt::println!("case {}/{}/step", set.name(), S::NAME);
+        bench_start();
+        let ok = el.set_trial(black_box(displacement::<S>(i))).is_ok();
+        el.commit();
+        bench_stop();
+        if !ok {
+            defmt::panic!("point {} refused", i);
+        }
+    }
+}
+
 fn bs32(tol: f32) -> Control<Fixed> {
     Control {
         method: Method::Bs32,
@@ -57,5 +75,7 @@ fn main() -> ! {
         case::<Fixed>("tol-5e-4", set, bs32(5e-4));
         case::<Fixed>("tol-2e-4", set, bs32(2e-4));
     }
+    per_step::<f32>(Set::All);
+    per_step::<Fixed>(Set::All);
     hysteresis_qemu::exit(0)
 }
