@@ -272,7 +272,7 @@ impl<S: Scalar, const N: usize> Backbone<S, N> {
         } else {
             let [x0, y0] = self.points[seg - 1];
             let k = self.slopes[seg];
-            (y0 + k * (x - x0), k)
+            (S::line(y0, k, x, x0), k)
         }
     }
 }

@@ -243,7 +243,7 @@ impl<S: Scalar> Branch<S> {
     #[inline]
     pub(crate) fn at(&self, seg: u8, x: S) -> (S, S) {
         let [x0, y0, k] = self.v[seg as usize];
-        (y0 + k * (x - x0), k)
+        (S::line(y0, k, x, x0), k)
     }
 }
 

@@ -336,6 +336,19 @@ impl Scalar for Fixed {
             raw => raw as f32 / ONE_RAW as f32,
         }
     }
+    #[inline]
+    fn line(y0: Self, k: Self, x: Self, x0: Self) -> Self {
+        let d = x.0 as i64 - x0.0 as i64;
+        let d32 = d as i32;
+        if y0.saturated() || k.saturated() || x.saturated() || x0.saturated() || d32 as i64 != d {
+            return y0 + k * (x - x0);
+        }
+        // The product rounded as `Mul` rounds it, then the sum: the same result
+        // as the three operations wherever none of them saturates, and no
+        // spurious saturation where only an intermediate would.
+        let p = k.0 as i64 * d32 as i64;
+        Fixed::from_wide(((p + (1 << (FRAC - 1))) >> FRAC) + y0.0 as i64)
+    }
     #[inline(always)]
     fn from_i32(x: i32) -> Self {
         Fixed::from_wide((x as i64) << FRAC)
@@ -389,6 +402,44 @@ mod tests {
 
     fn fx(x: f64) -> Fixed {
         Fixed::from_f64(x)
+    }
+
+    #[test]
+    fn fused_line_equals_the_three_operations_unless_they_saturate() {
+        let mut seed = 7u64;
+        let mut raw = || {
+            seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            // Values up to about +-2^8, so that some products saturate.
+            Fixed::from_raw(((seed >> 32) as i32) >> 7)
+        };
+        let (mut same, mut rescued) = (0, 0);
+        for _ in 0..200_000 {
+            let (y0, k, x, x0) = (raw(), raw(), raw(), raw());
+            let fused = Fixed::line(y0, k, x, x0);
+            let plain = y0 + k * (x - x0);
+            if plain.is_finite() {
+                assert_eq!(fused, plain, "{y0:?} + {k:?} ({x:?} - {x0:?})");
+                same += 1;
+            } else {
+                // Saturated somewhere: the fused value is the exact one, clamped.
+                let exact = y0.to_f64() + k.to_f64() * (x.to_f64() - x0.to_f64());
+                if exact.abs() < 32767.0 {
+                    assert!(
+                        (fused.to_f64() - exact).abs() <= LSB,
+                        "{exact} vs {fused:?}"
+                    );
+                    rescued += 1;
+                } else {
+                    assert!(!fused.is_finite());
+                }
+            }
+        }
+        assert!(same > 100_000 && rescued > 0, "{same} {rescued}");
+        // A saturated input stays saturated.
+        let inf = Fixed::from_raw(i32::MAX);
+        assert_eq!(Fixed::line(inf, fx(1.0), fx(2.0), fx(1.0)), inf);
     }
 
     #[test]

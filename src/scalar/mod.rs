@@ -108,6 +108,13 @@ pub trait Scalar:
             self
         }
     }
+    /// `y0 + k (x - x0)`: the value at `x` of the line of slope `k` through
+    /// `(x0, y0)`, the interpolation of every polygonal model. Fixed point
+    /// evaluates it in one wide expression with one saturation check.
+    #[inline]
+    fn line(y0: Self, k: Self, x: Self, x0: Self) -> Self {
+        y0 + k * (x - x0)
+    }
     /// +1 for positive, -1 for negative values, 0 for zero.
     #[inline]
     fn signum0(self) -> Self {

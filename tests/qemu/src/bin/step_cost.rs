@@ -13,6 +13,7 @@
 use core::hint::black_box;
 use hysteresis::bwbn::selftest::history::{displacement, Set, POINTS};
 use hysteresis::bwbn::{Bwbn, Control, Method};
+use hysteresis::phm::{Coefficients, Phm, PhmParams};
 use hysteresis::{Element, Fixed, Scalar};
 
 /// Start marker: the plugin counts from its first instruction.
@@ -59,6 +60,44 @@ fn per_step<S: Scalar>(set: Set) {
     }
 }
 
+/// The PHM on the same history (as twist), on the primary curve of
+/// OpenSees' `Pinching4` reference cases: (1, 5), (3, 6.3), (6, 6.5), (10, 5).
+fn phm<S: Scalar>() {
+    let p = |x: i32, y10: i32| [S::from_i32(x), S::ratio(y10, 10)];
+    let Ok(params) = PhmParams::<S, 4>::symmetric(
+        &[p(1, 50), p(3, 63), p(6, 65), p(10, 50)],
+        Coefficients::thesis(),
+    ) else {
+        defmt::panic!("PHM parameters refused")
+    };
+    let mut el: Phm<S, 4, 16> = Phm::new(black_box(params));
+    defmt::println!("case phm/{}/default", S::NAME);
+    let mut acc = S::ZERO;
+    bench_start();
+    for i in 1..POINTS {
+        match el.set_trial(black_box(displacement::<S>(i))) {
+            Ok(r) => acc += r.force,
+            Err(_) => defmt::panic!("point {} refused", i),
+        }
+        el.commit();
+    }
+    bench_stop();
+    black_box(acc);
+}
+
+/// The history loop alone (the displacement of each point and a sum), whose
+/// count `step-cost.sh` subtracts from the PHM's.
+fn history_loop<S: Scalar>() {
+    defmt::println!("case history/{}/loop", S::NAME);
+    let mut acc = S::ZERO;
+    bench_start();
+    for i in 1..POINTS {
+        acc += black_box(displacement::<S>(i));
+    }
+    bench_stop();
+    black_box(acc);
+}
+
 fn bs32(tol: f32) -> Control<Fixed> {
     Control {
         method: Method::Bs32,
@@ -75,6 +114,10 @@ fn main() -> ! {
         case::<Fixed>("tol-5e-4", set, bs32(5e-4));
         case::<Fixed>("tol-2e-4", set, bs32(2e-4));
     }
+    history_loop::<f32>();
+    history_loop::<Fixed>();
+    phm::<f32>();
+    phm::<Fixed>();
     per_step::<f32>(Set::All);
     per_step::<Fixed>(Set::All);
     hysteresis_qemu::exit(0)
