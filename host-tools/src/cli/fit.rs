@@ -1,11 +1,12 @@
 //! `hyst fit DATA --model SPEC`: parameters of a model from a lab record.
 
+use super::ModelArg;
 use crate::data::{self, ReadOptions};
 use crate::fit::experiment::Experiment;
 use crate::fit::nsga2::{BinaryCrossover, Encoding, Nsga2};
 use crate::fit::problem::Problem;
 use crate::fit::run::{self, Evolution, Method, Outcome, Progress};
-use crate::model::{to_json, ModelSpec};
+use crate::model::{to_json, PHM_MODEL};
 use anyhow::{anyhow, bail, Context, Result};
 use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
@@ -18,9 +19,15 @@ use std::time::Instant;
 pub struct FitArgs {
     /// The lab record (CSV or JSON; see the data formats in the README).
     pub data: PathBuf,
-    /// Model spec: `bw` or `bwbn`, then `+effect` terms.
+    /// Model spec: `bw` or `bwbn`, then `+effect` terms; or `phm-torsion`
+    /// (a twist/torque record; see `docs/phm.md`).
     #[arg(long, default_value = "bw")]
-    pub model: ModelSpec,
+    pub model: ModelArg,
+    /// `phm-torsion` only: start from this PHM parameter file (default: a
+    /// primary curve idealised from the record's envelope and the thesis'
+    /// coefficients).
+    #[arg(long)]
+    pub params: Option<PathBuf>,
     /// Search method: lsq, homotopy (force-driven records), nsga2 or auto.
     #[arg(long, default_value = "auto")]
     pub method: String,
@@ -183,13 +190,20 @@ pub fn fit_json(
 
 /// Runs `hyst fit`.
 pub fn run(args: FitArgs) -> Result<()> {
+    let model = match args.model {
+        ModelArg::Phm => return super::phm::fit(&args),
+        ModelArg::Bwbn(spec) => spec,
+    };
+    if args.params.is_some() {
+        bail!("--params (a start file) is for --model {PHM_MODEL}");
+    }
     let exp = load(&args.data, args.sample_rate, args.mass)?;
-    let problem = Problem::new(args.model, exp, &args.fix)?;
+    let problem = Problem::new(model, exp, &args.fix)?;
     if problem.dim() == 0 {
-        bail!("every parameter of {} is fixed: nothing to fit", args.model);
+        bail!("every parameter of {model} is fixed: nothing to fit");
     }
     let method: Method = args.method.parse()?;
-    let bar = Bar::new(&format!("fit {} ({method})", args.model), args.json);
+    let bar = Bar::new(&format!("fit {} ({method})", model), args.json);
     let t0 = Instant::now();
     if args.pareto.is_some() && method != Method::Nsga2 {
         bail!("--pareto writes the NSGA-II front: use it with --method nsga2");
@@ -210,7 +224,7 @@ pub fn run(args: FitArgs) -> Result<()> {
     }
     if args.json {
         let mut obj = json!({
-            "model": args.model.to_string(),
+            "model": model.to_string(),
             "nrmse": outcome.scores.nrmse,
             "ortiz": outcome.scores.ortiz,
             "method": outcome.method,
@@ -232,7 +246,7 @@ pub fn run(args: FitArgs) -> Result<()> {
     } else {
         println!(
             "model {}  method {}  NRMSE {:.4e}  ({} simulations, {seconds:.2} s)",
-            args.model, outcome.method, outcome.scores.nrmse, outcome.evaluations
+            model, outcome.method, outcome.scores.nrmse, outcome.evaluations
         );
         for (name, v) in &outcome.values {
             let fixed = if problem.par.fixed.contains_key(name) {

@@ -6,11 +6,36 @@ pub mod export;
 pub mod fe;
 pub mod fit;
 pub mod params;
+pub mod phm;
 pub mod sensitivity;
 pub mod simulate;
 pub mod table;
 
+use crate::model::{ModelSpec, PHM_MODEL};
 use clap::{Parser, Subcommand};
+use std::str::FromStr;
+
+/// A `--model` value: a Bouc-Wen spec (`bw+pinching`, ...) or the polygonal
+/// hysteresis model for torsion (`phm-torsion`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ModelArg {
+    /// A Bouc-Wen model spec.
+    Bwbn(ModelSpec),
+    /// The PHM of thesis ch. 5.
+    Phm,
+}
+
+impl FromStr for ModelArg {
+    type Err = anyhow::Error;
+    fn from_str(s: &str) -> anyhow::Result<Self> {
+        if s.trim() == PHM_MODEL {
+            return Ok(ModelArg::Phm);
+        }
+        ModelSpec::parse(s)
+            .map(ModelArg::Bwbn)
+            .map_err(|e| anyhow::anyhow!("{e} (or `{PHM_MODEL}`)"))
+    }
+}
 
 /// hyst: hysteresis models of RC members, from the lab bench to the controller.
 #[derive(Debug, Parser)]

@@ -14,12 +14,19 @@
 //! | step (row order only) | `step`, `index` |
 //! | displacement | `displacement`, `disp`, `drift`, `strain`, `deformation`, `deflection`, `delta` |
 //! | force | `force`, `load`, `stress`, `shear`, `f`, `v` |
+//! | displacement: a twist (angle unit, deg assumed) | `twist`, `rotation`, `angle` |
+//! | force: a torque (torque unit, kN m assumed) | `torque`, `moment` |
 //! | displacement or force, by unit | `u`, `x`, `y` (not read without a unit) |
 //!
 //! `strain` and `stress` follow the OpenSees convention of a uniaxial material
 //! driven by a displacement: strain is a displacement in mm, stress a force in
 //! kN.
+//!
+//! A torsion record (thesis ch. 5) is read into the same two channels: its
+//! twist is the displacement channel (in deg), its torque the force channel
+//! (in kN m). A twist or torque name needs a unit of its own quantity.
 
+use super::units::Quantity;
 use std::fmt;
 
 /// What a column holds, as recognised from its header or given in the read
@@ -66,6 +73,10 @@ pub const DISPLACEMENT_NAMES: &[&str] = &[
 ];
 /// Names recognised as force.
 pub const FORCE_NAMES: &[&str] = &["force", "load", "stress", "shear", "f", "v"];
+/// Names recognised as a twist (the displacement channel of a torsion record).
+pub const TWIST_NAMES: &[&str] = &["twist", "rotation", "angle"];
+/// Names recognised as a torque (the force channel of a torsion record).
+pub const TORQUE_NAMES: &[&str] = &["torque", "moment"];
 /// Signal names whose role comes from their unit (not read without one).
 pub const GENERIC_NAMES: &[&str] = &["u", "x", "y"];
 
@@ -87,9 +98,9 @@ fn lookup(word: &str) -> NameRole {
         NameRole::Specific(Role::Time)
     } else if STEP_NAMES.contains(&w) {
         NameRole::Specific(Role::Step)
-    } else if DISPLACEMENT_NAMES.contains(&w) {
+    } else if DISPLACEMENT_NAMES.contains(&w) || TWIST_NAMES.contains(&w) {
         NameRole::Specific(Role::Displacement)
-    } else if FORCE_NAMES.contains(&w) {
+    } else if FORCE_NAMES.contains(&w) || TORQUE_NAMES.contains(&w) {
         NameRole::Specific(Role::Force)
     } else if GENERIC_NAMES.contains(&w) {
         NameRole::Generic
@@ -115,6 +126,26 @@ pub(crate) fn role_of_name(name: &str) -> NameRole {
         },
         _ => NameRole::Unknown,
     }
+}
+
+/// The quantity a twist or torque name requires (the whole name, else its
+/// last word); `None` for every other name.
+pub(crate) fn torsion_quantity(name: &str) -> Option<Quantity> {
+    let is = |w: &str| {
+        let w = w.to_ascii_lowercase();
+        if TWIST_NAMES.contains(&w.as_str()) {
+            Some(Quantity::Angle)
+        } else if TORQUE_NAMES.contains(&w.as_str()) {
+            Some(Quantity::Torque)
+        } else {
+            None
+        }
+    };
+    is(name.trim()).or_else(|| {
+        name.split(|c: char| c.is_whitespace() || c == '_' || c == '-')
+            .rfind(|w| !w.is_empty())
+            .and_then(is)
+    })
 }
 
 /// A header field split into its name and unit text.
@@ -214,6 +245,11 @@ mod tests {
             role_of_name("lateral displacement"),
             Specific(Role::Displacement)
         );
+        assert_eq!(role_of_name("Twist"), Specific(Role::Displacement));
+        assert_eq!(role_of_name("applied torque"), Specific(Role::Force));
+        assert_eq!(torsion_quantity("applied torque"), Some(Quantity::Torque));
+        assert_eq!(torsion_quantity("rotation"), Some(Quantity::Angle));
+        assert_eq!(torsion_quantity("force"), None);
         assert_eq!(role_of_name("y"), Generic);
         assert_eq!(role_of_name("lateral u"), Unknown);
         assert_eq!(role_of_name("tangent"), Unknown);

@@ -11,13 +11,17 @@
 //!    Displacment`): its units apply to the columns whose header has none.
 //! 4. A column's role is the role given in the read options; else the role of
 //!    its unit's quantity (a length unit makes a displacement, a force unit a
-//!    force, a time unit a time), which must agree with a role name; else the
-//!    role of its name. Columns with no role are not read (reported).
+//!    force, a time unit a time; an angle unit a displacement, i.e. a twist, a
+//!    torque unit a force, i.e. a torque), which must agree with a role name;
+//!    else the role of its name. A twist or torque name (`twist`, `torque`,
+//!    ...) needs an angle or torque unit, and deg or kN m is assumed when it
+//!    has none. Columns with no role are not read (reported).
 //! 5. Every data line must have as many fields as the header; the fields of
 //!    the columns read must be finite numbers; time and step must increase.
 
 use super::columns::{parse_header_field, role_of_name, unquote, HeaderField, NameRole, Role};
-use super::columns::{DISPLACEMENT_NAMES, FORCE_NAMES};
+use super::columns::{torsion_quantity, DISPLACEMENT_NAMES, FORCE_NAMES};
+use super::columns::{TORQUE_NAMES, TWIST_NAMES};
 use super::error::DataError;
 use super::read::{ColumnRef, ReadOptions};
 use super::record::{Channel, Notice, Record, Series};
@@ -51,12 +55,14 @@ enum Source {
 
 fn quantity_role(q: Quantity) -> Role {
     match q {
-        Quantity::Length => Role::Displacement,
-        Quantity::Force => Role::Force,
+        Quantity::Length | Quantity::Angle => Role::Displacement,
+        Quantity::Force | Quantity::Torque => Role::Force,
         Quantity::Time => Role::Time,
     }
 }
 
+/// The quantity a role takes when nothing says otherwise (the unit assumed
+/// and the units listed in messages).
 fn role_quantity(r: Role) -> Option<Quantity> {
     match r {
         Role::Time => Some(Quantity::Time),
@@ -221,12 +227,27 @@ impl Header<'_> {
                         ));
                     }
                 }
+                if let Some(q) = torsion_quantity(&h.name) {
+                    if u.quantity() != q {
+                        return Err(self.err(
+                            i + 1,
+                            format!(
+                                "column '{}' is named like {q} but its unit {u} is a {} unit: expected {}",
+                                h.text,
+                                u.quantity(),
+                                q.known_symbols()
+                            ),
+                        ));
+                    }
+                }
                 (r, Source::Header)
             } else if let Some((t, at)) = &unit_text {
                 match name_role {
                     NameRole::Specific(Role::Step) => (Role::Step, Source::Header),
                     NameRole::Specific(r) => {
-                        let q = role_quantity(r).unwrap_or(Quantity::Length);
+                        let q = torsion_quantity(&h.name)
+                            .or(role_quantity(r))
+                            .unwrap_or(Quantity::Length);
                         return Err(unknown_unit(self.file, *at, i, h, t, q));
                     }
                     NameRole::Generic => {
@@ -276,6 +297,9 @@ impl Header<'_> {
             }
             // The unit this role needs.
             if let Some(q) = role_quantity(role) {
+                let q = torsion_quantity(&h.name)
+                    .filter(|t| quantity_role(*t) == role)
+                    .unwrap_or(q);
                 let u = match (unit, &unit_text) {
                     (Some(u), _) => u,
                     (None, Some((t, at))) => return Err(unknown_unit(self.file, *at, i, h, t, q)),
@@ -288,7 +312,7 @@ impl Header<'_> {
                         u
                     }
                 };
-                if u.quantity() != q {
+                if quantity_role(u.quantity()) != role {
                     return Err(self.err(
                         i + 1,
                         format!(
@@ -385,18 +409,20 @@ fn unknown_unit(
 }
 
 fn missing_column(file: &Path, line: usize, channel: Channel, header: &[HeaderField]) -> DataError {
-    let names = match channel {
-        Channel::Displacement => DISPLACEMENT_NAMES.to_vec(),
-        Channel::Force => FORCE_NAMES.to_vec(),
+    let (names, torsion) = match channel {
+        Channel::Displacement => (DISPLACEMENT_NAMES, TWIST_NAMES),
+        Channel::Force => (FORCE_NAMES, TORQUE_NAMES),
     };
+    let names = [names, torsion].concat();
     DataError::at(
         file,
         line,
         1,
         format!(
-            "expected a {channel} column (named {}, or with a {} unit, or given the role in the read options), found columns {}",
+            "expected a {channel} column (named {}, or with a {} or {} unit, or given the role in the read options), found columns {}",
             names.join(", "),
             channel.quantity(),
+            channel.torsion_quantity(),
             column_list(header)
         ),
     )

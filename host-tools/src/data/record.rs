@@ -12,13 +12,24 @@ use std::path::{Path, PathBuf};
 /// The two signals of a hysteresis record.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Channel {
-    /// Displacement (deformation, drift, strain), canonical unit mm.
+    /// Displacement (deformation, drift, strain), canonical unit mm; in a
+    /// torsion record the twist, canonical unit deg.
     Displacement,
-    /// Force (load, shear, stress), canonical unit kN.
+    /// Force (load, shear, stress), canonical unit kN; in a torsion record
+    /// the torque, canonical unit kN m.
     Force,
 }
 
 impl Channel {
+    /// The quantity of the channel's unit in a torsion record: angle (a
+    /// twist) or torque.
+    pub fn torsion_quantity(self) -> Quantity {
+        match self {
+            Channel::Displacement => Quantity::Angle,
+            Channel::Force => Quantity::Torque,
+        }
+    }
+
     /// The quantity of the channel's unit.
     pub fn quantity(self) -> Quantity {
         match self {
@@ -331,6 +342,20 @@ impl Record {
             Channel::Displacement => self.displacement.as_ref(),
             Channel::Force => self.force.as_ref(),
         }
+    }
+
+    /// The quantity of a channel as read: length or angle (a twist) for the
+    /// displacement, force or torque for the force; `None` if it is missing.
+    pub fn quantity(&self, channel: Channel) -> Option<Quantity> {
+        self.series(channel).map(|s| s.unit.quantity())
+    }
+
+    /// Whether either channel is a twist or a torque (a torsion record, for
+    /// the PHM of thesis ch. 5, not for the BWBN models).
+    pub fn is_torsion(&self) -> bool {
+        [Channel::Displacement, Channel::Force]
+            .into_iter()
+            .any(|c| self.quantity(c) == Some(c.torsion_quantity()))
     }
 
     /// The time series with its column name and original unit.

@@ -1,5 +1,7 @@
 //! Units of the lab records and their conversion to the canonical units of the
-//! project: millimetres, kilonewtons and seconds.
+//! project: millimetres, kilonewtons and seconds; for torsion records (the
+//! torque-twist tests of thesis ch. 5) degrees of twist and kilonewton metres
+//! of torque.
 
 use std::fmt;
 
@@ -12,6 +14,10 @@ pub enum Quantity {
     Force,
     /// Time (canonical unit s).
     Time,
+    /// Angle of twist or rotation (canonical unit deg).
+    Angle,
+    /// Torque or moment (canonical unit kN m).
+    Torque,
 }
 
 impl Quantity {
@@ -21,6 +27,8 @@ impl Quantity {
             Quantity::Length => Unit::Millimetre,
             Quantity::Force => Unit::Kilonewton,
             Quantity::Time => Unit::Second,
+            Quantity::Angle => Unit::Degree,
+            Quantity::Torque => Unit::KilonewtonMetre,
         }
     }
 
@@ -41,6 +49,8 @@ impl fmt::Display for Quantity {
             Quantity::Length => "length",
             Quantity::Force => "force",
             Quantity::Time => "time",
+            Quantity::Angle => "angle",
+            Quantity::Torque => "torque",
         })
     }
 }
@@ -49,8 +59,11 @@ impl fmt::Display for Quantity {
 ///
 /// Accepted spellings (see [`Unit::parse`]): length `mm`, `cm`, `m`, `in`
 /// (`in.`, `inch`, `inches`); force `N`, `kN`, `MN`, `kip` (`kips`), `lbf`
-/// (`lb`, `lbs`); time `s` (`sec`), `ms`. Matching ignores case except for
-/// `m` and `MN`: `M` and `mN` are refused rather than guessed.
+/// (`lb`, `lbs`); time `s` (`sec`), `ms`; angle `deg` (`degree`, `degrees`,
+/// `°`), `rad` (`radian`, `radians`); torque `kN m` and `N m` (the space may
+/// also be `*`, `.`, `-`, `·` or nothing: `kNm`, `kN*m`, `kN-m`). Matching
+/// ignores case except for `m` and `MN`: `M` and `mN` are refused rather than
+/// guessed.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Unit {
     /// mm (canonical length).
@@ -75,6 +88,14 @@ pub enum Unit {
     Second,
     /// ms = 0.001 s.
     Millisecond,
+    /// deg (canonical angle).
+    Degree,
+    /// rad = 180/pi deg.
+    Radian,
+    /// kN m (canonical torque).
+    KilonewtonMetre,
+    /// N m = 0.001 kN m.
+    NewtonMetre,
 }
 
 /// How a value in a unit becomes a value in the canonical unit: decimal
@@ -88,8 +109,8 @@ enum Scale {
 }
 
 impl Unit {
-    /// Every unit, lengths first, then forces, then times.
-    pub const ALL: [Unit; 11] = [
+    /// Every unit, lengths first, then forces, times, angles and torques.
+    pub const ALL: [Unit; 15] = [
         Unit::Millimetre,
         Unit::Centimetre,
         Unit::Metre,
@@ -101,6 +122,10 @@ impl Unit {
         Unit::PoundForce,
         Unit::Second,
         Unit::Millisecond,
+        Unit::Degree,
+        Unit::Radian,
+        Unit::KilonewtonMetre,
+        Unit::NewtonMetre,
     ];
 
     /// The quantity the unit measures.
@@ -111,6 +136,8 @@ impl Unit {
                 Quantity::Force
             }
             Unit::Second | Unit::Millisecond => Quantity::Time,
+            Unit::Degree | Unit::Radian => Quantity::Angle,
+            Unit::KilonewtonMetre | Unit::NewtonMetre => Quantity::Torque,
         }
     }
 
@@ -128,16 +155,25 @@ impl Unit {
             Unit::PoundForce => "lbf",
             Unit::Second => "s",
             Unit::Millisecond => "ms",
+            Unit::Degree => "deg",
+            Unit::Radian => "rad",
+            Unit::KilonewtonMetre => "kN m",
+            Unit::NewtonMetre => "N m",
         }
     }
 
     fn scale(self) -> Scale {
         match self {
-            Unit::Millimetre | Unit::Kilonewton | Unit::Second => Scale::Mul(1.0),
+            Unit::Millimetre
+            | Unit::Kilonewton
+            | Unit::Second
+            | Unit::Degree
+            | Unit::KilonewtonMetre => Scale::Mul(1.0),
             Unit::Centimetre => Scale::Mul(10.0),
             Unit::Metre | Unit::Meganewton => Scale::Mul(1000.0),
             Unit::Inch => Scale::Mul(25.4),
-            Unit::Newton | Unit::Millisecond => Scale::Div(1000.0),
+            Unit::Newton | Unit::Millisecond | Unit::NewtonMetre => Scale::Div(1000.0),
+            Unit::Radian => Scale::Mul(180.0 / std::f64::consts::PI),
             Unit::Kip => Scale::Mul(4.448_221_615_260_5),
             Unit::PoundForce => Scale::Mul(0.004_448_221_615_260_5),
         }
@@ -191,7 +227,20 @@ impl Unit {
             "lbf" | "lb" | "lbs" => Unit::PoundForce,
             "s" | "sec" | "second" | "seconds" => Unit::Second,
             "ms" => Unit::Millisecond,
-            _ => return None,
+            "deg" | "degree" | "degrees" | "°" => Unit::Degree,
+            "rad" | "radian" | "radians" => Unit::Radian,
+            _ => {
+                // Torque: force unit, separator, metre.
+                let compact: String = lower
+                    .chars()
+                    .filter(|c| !matches!(c, ' ' | '*' | '.' | '-' | '·' | '⋅'))
+                    .collect();
+                match compact.as_str() {
+                    "knm" => Unit::KilonewtonMetre,
+                    "nm" => Unit::NewtonMetre,
+                    _ => return None,
+                }
+            }
         })
     }
 }
@@ -223,6 +272,13 @@ mod tests {
         assert_eq!(Unit::parse("mN"), None);
         assert_eq!(Unit::parse("furlong"), None);
         assert_eq!(Unit::parse(""), None);
+        assert_eq!(Unit::parse("Degrees"), Some(Unit::Degree));
+        assert_eq!(Unit::parse("°"), Some(Unit::Degree));
+        for t in ["kN m", "kNm", "kN*m", "kN.m", "kN-m", "kN·m", "KN M"] {
+            assert_eq!(Unit::parse(t), Some(Unit::KilonewtonMetre), "{t}");
+        }
+        assert_eq!(Unit::parse("N m"), Some(Unit::NewtonMetre));
+        assert_eq!(Unit::parse("kN mm"), None);
     }
 
     #[test]
@@ -235,6 +291,8 @@ mod tests {
         assert_eq!(Unit::Centimetre.to_canonical(0.5), 5.0);
         assert_eq!(Unit::Meganewton.to_canonical(0.002), 2.0);
         assert_eq!(Unit::Millisecond.to_canonical(250.0), 0.25);
+        assert_eq!(Unit::NewtonMetre.to_canonical(1500.0), 1.5);
+        assert!((Unit::Radian.to_canonical(std::f64::consts::PI) - 180.0).abs() < 1e-12);
         // Decimal scalings are correctly rounded: 0.1 m is the f64 nearest 100 mm.
         assert_eq!(Unit::Metre.to_canonical(0.1), 100.0);
         assert_eq!(Unit::Newton.to_canonical(100.0), 0.1);

@@ -179,6 +179,9 @@ impl Experiment {
         use crate::data::Channel;
         use anyhow::{anyhow, bail};
         let src = record.source().display();
+        if record.is_torsion() {
+            bail!("{src}: a twist/torque record: the Bouc-Wen models take displacement and force; fit it with --model phm-torsion");
+        }
         let (u, f) = record.displacement_force()?;
         match record.input_channel() {
             Channel::Displacement => {

@@ -76,6 +76,51 @@ impl Identifiability {
     }
 }
 
+/// `cost / (n_obs - p)`: the residual variance of a fit of `p` parameters.
+fn residual_variance(cost: f64, n_obs: usize, p: usize) -> f64 {
+    cost / n_obs.saturating_sub(p).max(1) as f64
+}
+
+/// `(J^T J)^+ = V diag(1/s^2) V^T` from the singular values and `V^T` of
+/// `J`; a parameter in a null direction gets an infinite variance.
+fn normal_inverse(sv: &[f64], v_t: &DMatrix<f64>, smax: f64) -> DMatrix<f64> {
+    let p = v_t.ncols();
+    let mut cov: DMatrix<f64> = DMatrix::zeros(p, p);
+    for (k, &s) in sv.iter().enumerate() {
+        if s > 1e-12 * smax {
+            let w = 1.0 / (s * s);
+            for i in 0..p {
+                for j in 0..p {
+                    cov[(i, j)] += v_t[(k, i)] * v_t[(k, j)] * w;
+                }
+            }
+        } else {
+            // A null direction: the parameters in it have no finite variance.
+            for i in 0..p {
+                if v_t[(k, i)].abs() > 1e-8 {
+                    cov[(i, i)] = f64::INFINITY;
+                }
+            }
+        }
+    }
+    cov
+}
+
+/// The parameter covariance `s^2 (J^T J)^+` of a fit with Jacobian `jac`
+/// and residual sum of squares `cost` over `n_obs` observations (infinite
+/// variances in the directions the Jacobian does not see).
+pub fn covariance(jac: &DMatrix<f64>, cost: f64, n_obs: usize) -> DMatrix<f64> {
+    let svd = jac.clone().svd(false, true);
+    let sv = svd.singular_values.as_slice();
+    let v_t = svd.v_t.as_ref().expect("requested V^T");
+    let smax = sv
+        .iter()
+        .cloned()
+        .fold(0.0f64, f64::max)
+        .max(f64::MIN_POSITIVE);
+    normal_inverse(sv, v_t, smax) * residual_variance(cost, n_obs, jac.ncols())
+}
+
 /// Analyses the Jacobian `jac` (rows: residuals, columns: the normalised
 /// parameters `x` named `names`) at a fit with residual sum of squares
 /// `cost` over `n_obs` observations. Relative errors are scale-free, so
@@ -98,27 +143,8 @@ pub fn analyse(
         .max(f64::MIN_POSITIVE);
     let smin = sv.iter().cloned().fold(f64::INFINITY, f64::min);
     let rank = sv.iter().filter(|&&s| s > 1e-6 * smax).count();
-    // Covariance from the pseudo-inverse: V diag(1/s^2) V^T, times s^2.
-    let dof = n_obs.saturating_sub(p).max(1) as f64;
-    let s2 = cost / dof;
-    let mut cov: DMatrix<f64> = DMatrix::zeros(p, p);
-    for (k, &s) in sv.iter().enumerate() {
-        if s > 1e-12 * smax {
-            let w = 1.0 / (s * s);
-            for i in 0..p {
-                for j in 0..p {
-                    cov[(i, j)] += v_t[(k, i)] * v_t[(k, j)] * w;
-                }
-            }
-        } else {
-            // A null direction: the parameters in it have no finite variance.
-            for i in 0..p {
-                if v_t[(k, i)].abs() > 1e-8 {
-                    cov[(i, i)] = f64::INFINITY;
-                }
-            }
-        }
-    }
+    let s2 = residual_variance(cost, n_obs, p);
+    let cov = normal_inverse(sv.as_slice(), v_t, smax);
     let var: Vec<f64> = (0..p).map(|i| cov[(i, i)] * s2).collect();
     let relative_std: Vec<(String, f64)> = names
         .iter()

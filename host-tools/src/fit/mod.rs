@@ -7,6 +7,7 @@ pub mod lsq;
 pub mod nsga2;
 pub mod objectives;
 pub mod parametrization;
+pub mod phm;
 pub mod problem;
 pub mod run;
 pub mod sensitivity;

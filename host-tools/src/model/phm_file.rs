@@ -15,10 +15,16 @@
 //!
 //! `negative` may be left out (a symmetric column); a coefficient left out
 //! keeps the thesis' value; an unknown key or coefficient name is an error.
+//! `units` must name an angle and a torque unit the data reader knows
+//! (default deg and kN m): records are converted to them before the model
+//! runs. `hyst fit` adds a `fit` object (how the file was fitted), which the
+//! reader skips.
 
+use crate::data::{Quantity, Unit};
 use anyhow::{anyhow, bail, Context, Result};
-use hysteresis::phm::{PhmParams, SPECS};
-use serde_json::{Map, Value};
+use hysteresis::phm::{Direction, Phm, PhmParams, SPECS};
+use hysteresis::Element;
+use serde_json::{json, Map, Value};
 use std::path::{Path, PathBuf};
 
 /// The `model` value of a PHM file.
@@ -36,6 +42,20 @@ pub struct PhmFile {
     pub params: PhmParams<f64, PHM_POINTS>,
     /// `(twist, torque)` units, if stated.
     pub units: Option<(String, String)>,
+    /// The `(twist, torque)` units the parameters are in: the stated ones,
+    /// else deg and kN m.
+    pub data_units: (Unit, Unit),
+}
+
+fn unit_of(path: &Path, key: &str, text: &str, q: Quantity) -> Result<Unit> {
+    match Unit::parse(text) {
+        Some(u) if u.quantity() == q => Ok(u),
+        _ => bail!(
+            "{}: units.{key} is '{text}': expected an {q} unit ({})",
+            path.display(),
+            q.known_symbols()
+        ),
+    }
 }
 
 /// Whether the JSON text is a PHM file (its `model` is `phm-torsion`).
@@ -85,13 +105,21 @@ impl PhmFile {
         let Some(map) = value.as_object() else {
             bail!("{}: expected a JSON object", path.display());
         };
+        if let Some(m) = map.get("model").filter(|_| !is_phm(value)) {
+            bail!(
+                "{}: \"model\" is {m}: expected \"{PHM_MODEL}\" in a PHM file",
+                path.display()
+            );
+        }
         let mut positive = None;
         let mut negative = None;
         let mut coefficients = Map::new();
         let mut units = None;
+        let mut data_units = (Unit::Degree, Unit::KilonewtonMetre);
         for (key, v) in map {
             match key.as_str() {
-                "model" if is_phm(value) => {}
+                "model" => {}
+                "fit" => {}
                 "memory" => {
                     if v.as_u64() != Some(16) {
                         bail!(
@@ -103,7 +131,13 @@ impl PhmFile {
                 "units" => {
                     let get = |k: &str| v.get(k).and_then(Value::as_str).map(str::to_string);
                     match (get("twist"), get("torque")) {
-                        (Some(t), Some(m)) => units = Some((t, m)),
+                        (Some(t), Some(m)) => {
+                            data_units = (
+                                unit_of(path, "twist", &t, Quantity::Angle)?,
+                                unit_of(path, "torque", &m, Quantity::Torque)?,
+                            );
+                            units = Some((t, m));
+                        }
                         _ => bail!(
                             "{}: \"units\" must be {{\"twist\": ..., \"torque\": ...}}",
                             path.display()
@@ -147,7 +181,7 @@ impl PhmFile {
                     coefficients = c.clone();
                 }
                 other => bail!(
-                    "{}: unknown key \"{other}\" in a PHM file (model, units, primary, coefficients, memory)",
+                    "{}: unknown key \"{other}\" in a PHM file (model, units, primary, coefficients, memory, fit)",
                     path.display()
                 ),
             }
@@ -163,8 +197,82 @@ impl PhmFile {
             path: path.to_path_buf(),
             params,
             units,
+            data_units,
         })
     }
+}
+
+/// A PHM parameter file as JSON (the format [`PhmFile::read`] reads): both
+/// primary curves, every coefficient, units and, if given, the `fit` object.
+pub fn phm_json(
+    params: &PhmParams<f64, PHM_POINTS>,
+    units: (Unit, Unit),
+    fit: Option<Value>,
+) -> Value {
+    let curve = |d| {
+        params
+            .primary(d)
+            .points()
+            .iter()
+            .map(|p| json!([p[0], p[1]]))
+            .collect::<Vec<_>>()
+    };
+    let mut coefficients = Map::new();
+    params.coefficients().for_each(|s, v| {
+        coefficients.insert(s.name.to_string(), json!(v));
+    });
+    let mut v = json!({
+        "model": PHM_MODEL,
+        "units": { "twist": units.0.symbol(), "torque": units.1.symbol() },
+        "primary": {
+            "positive": curve(Direction::Positive),
+            "negative": curve(Direction::Negative),
+        },
+        "coefficients": coefficients,
+        "memory": 16,
+    });
+    if let Some(fit) = fit {
+        v["fit"] = fit;
+    }
+    v
+}
+
+/// The response of a PHM element along a twist history.
+#[derive(Clone, Debug, Default)]
+pub struct PhmRun {
+    /// Twist, as given.
+    pub twist: Vec<f64>,
+    /// Torque.
+    pub torque: Vec<f64>,
+    /// Tangent d(torque)/d(twist).
+    pub tangent: Vec<f64>,
+    /// The cycle counter n of eqs 5-6 of each direction (positive first)
+    /// after each step.
+    pub cycles: [Vec<f64>; 2],
+    /// Remembered branches dropped because the inner-cycle memory was full
+    /// (gap G8 of `docs/phm.md`).
+    pub forgotten: u32,
+}
+
+/// Runs a PHM element (inner-cycle memory 16) over a twist history, one
+/// committed step per sample. Errors name the sample.
+pub fn simulate_phm(params: &PhmParams<f64, PHM_POINTS>, twist: &[f64]) -> Result<PhmRun> {
+    let mut el: Phm<f64, PHM_POINTS> = Phm::new(params.clone());
+    let mut run = PhmRun::default();
+    for (i, &x) in twist.iter().enumerate() {
+        let r = el
+            .set_trial(x)
+            .map_err(|e| anyhow!("step to sample {} (twist {x}): {e}", i + 1))?;
+        el.commit();
+        run.twist.push(x);
+        run.torque.push(r.force);
+        run.tangent.push(r.tangent);
+        for (c, l) in run.cycles.iter_mut().zip(el.levels()) {
+            c.push(f64::from(l.cycles));
+        }
+    }
+    run.forgotten = el.forgotten();
+    Ok(run)
 }
 
 #[cfg(test)]
@@ -191,6 +299,12 @@ mod tests {
         .unwrap();
         assert_eq!(f.params.coefficients().get("eq4_b"), Some(-0.786));
         assert_eq!(f.units, Some(("deg".into(), "kN m".into())));
+        let back = PhmFile::from_value(
+            Path::new("b.json"),
+            &phm_json(&f.params, f.data_units, Some(json!({"nrmse": 0.1}))),
+        )
+        .unwrap();
+        assert_eq!(back.params, f.params);
     }
 
     #[test]

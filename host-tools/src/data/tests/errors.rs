@@ -61,16 +61,16 @@ fn malformed_csv_table() {
             "a,b\n1,2\n".into(),
             d.clone(),
             "nodisp.csv:1:1: expected a displacement column (named displacement, disp, drift, \
-             strain, deformation, deflection, delta, or with a length unit, or given the role in \
-             the read options), found columns 'a', 'b'",
+             strain, deformation, deflection, delta, twist, rotation, angle, or with a length or \
+             angle unit, or given the role in the read options), found columns 'a', 'b'",
         ),
         (
             "noforce.csv",
             "displacement (mm),b\n1,2\n".into(),
             ReadOptions::default().input(Channel::Force),
-            "noforce.csv:1:1: expected a force column (named force, load, stress, shear, f, v, or \
-             with a force unit, or given the role in the read options), found columns \
-             'displacement (mm)', 'b'",
+            "noforce.csv:1:1: expected a force column (named force, load, stress, shear, f, v, \
+             torque, moment, or with a force or torque unit, or given the role in the read \
+             options), found columns 'displacement (mm)', 'b'",
         ),
         (
             "unit.csv",

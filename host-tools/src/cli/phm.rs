@@ -1,0 +1,271 @@
+//! `hyst simulate` and `hyst fit` with `--model phm-torsion`: the polygonal
+//! hysteresis model of thesis ch. 5 on torque-twist records.
+
+use super::fit::{Bar, FitArgs};
+use super::simulate::SimulateArgs;
+use crate::data::{self, Channel, Quantity, ReadOptions, Record, Unit};
+use crate::fit::phm::{first_excursions, fit_envelope, idealise, valid_start, PhmProblem};
+use crate::fit::run::Progress;
+use crate::model::{phm_json, simulate_phm, PhmFile, PHM_MODEL, PHM_POINTS};
+use crate::report::plots::{loop_overlay, Quantity as Axis, Trace};
+use anyhow::{anyhow, bail, Context, Result};
+use hysteresis::phm::{Coefficients, Direction, PhmParams};
+use serde_json::{json, Map, Value};
+use std::io::Write;
+use std::path::Path;
+use std::time::Instant;
+
+/// The values of `channel` (twist or torque) in `unit`; an error naming the
+/// file and the column if the record holds another quantity.
+fn channel(record: &Record, channel: Channel, unit: Unit) -> Result<Vec<f64>> {
+    let file = record.source().display();
+    let want = channel.torsion_quantity();
+    let (names, what) = match channel {
+        Channel::Displacement => ("twist, rotation or angle", "twist"),
+        Channel::Force => ("torque or moment", "torque"),
+    };
+    let Some(s) = record.series(channel) else {
+        bail!(
+            "{file}: expected a {what} column (named {names}, or with an {want} unit: {}), found none",
+            want.known_symbols()
+        );
+    };
+    if s.unit.quantity() != want {
+        bail!(
+            "{file}: the PHM needs a {what} column (named {names}, or with an {want} unit: {}), found '{}' in {} (a {} unit)",
+            want.known_symbols(),
+            s.name,
+            s.unit,
+            s.unit.quantity()
+        );
+    }
+    Ok(s.values.iter().map(|v| unit.from_canonical(*v)).collect())
+}
+
+fn create(path: Option<&Path>) -> Result<Box<dyn Write>> {
+    Ok(match path {
+        Some(p) => Box::new(
+            std::fs::File::create(p).with_context(|| format!("{}: cannot create", p.display()))?,
+        ),
+        None => Box::new(std::io::stdout().lock()),
+    })
+}
+
+/// Runs `hyst simulate --model phm-torsion`.
+pub fn simulate(args: &SimulateArgs) -> Result<()> {
+    let file = PhmFile::read(&args.params)?;
+    let (tu, mu) = file.data_units;
+    let record = data::read(
+        &args.history,
+        &ReadOptions::default().input(Channel::Displacement),
+    )?;
+    for n in record.notices() {
+        eprintln!("note: {n}");
+    }
+    let twist = channel(&record, Channel::Displacement, tu)?;
+    let run = simulate_phm(&file.params, &twist)
+        .map_err(|e| anyhow!("{}: {e}", args.history.display()))?;
+    let (x_head, t_head) = (format!("twist ({tu})"), format!("torque ({mu})"));
+    let columns: [(&str, &[f64]); 5] = [
+        (&x_head, &run.twist),
+        (&t_head, &run.torque),
+        ("tangent", &run.tangent),
+        ("n_positive", &run.cycles[0]),
+        ("n_negative", &run.cycles[1]),
+    ];
+    if args.json {
+        let obj = json!({
+            "model": PHM_MODEL,
+            "params": args.params.display().to_string(),
+            "history": args.history.display().to_string(),
+            "units": { "twist": tu.symbol(), "torque": mu.symbol() },
+            "samples": run.twist.len(),
+            "peak_torque": run.torque.iter().fold(0.0f64, |m, t| m.max(t.abs())),
+            "forgotten": run.forgotten,
+            "columns": columns.iter().map(|(h, v)| (h.to_string(), json!(v))).collect::<Map<_, _>>(),
+        });
+        writeln!(std::io::stdout().lock(), "{}", serde_json::to_string(&obj)?)?;
+        if let Some(p) = &args.out {
+            data::write_columns(create(Some(p))?, &[], &columns)?;
+        }
+    } else {
+        data::write_columns(create(args.out.as_deref())?, &[], &columns)?;
+    }
+    if run.forgotten > 0 {
+        eprintln!(
+            "note: {} remembered branches were dropped (inner cycles nested deeper than 8; docs/phm.md G8)",
+            run.forgotten
+        );
+    }
+    if let Some(path) = &args.plot {
+        let mut traces = vec![];
+        let measured = match record.quantity(Channel::Force) {
+            Some(Quantity::Torque) => Some(channel(&record, Channel::Force, mu)?),
+            _ => None,
+        };
+        if let Some(t) = &measured {
+            traces.push(Trace::measured("measured", &twist, t));
+        }
+        traces.push(Trace::model(PHM_MODEL, &run.twist, &run.torque));
+        let fig = loop_overlay(
+            &traces,
+            Axis::new("Twist", tu.symbol()),
+            Axis::new("Torque", mu.symbol()),
+        )?;
+        std::fs::write(path, fig.to_svg())
+            .with_context(|| format!("{}: cannot write", path.display()))?;
+    }
+    Ok(())
+}
+
+/// The start of a fit without a start file: each direction's primary curve
+/// idealised from the record's envelope, the thesis' coefficients.
+fn idealised_start(
+    file: &Path,
+    twist: &[f64],
+    torque: &[f64],
+) -> Result<PhmParams<f64, PHM_POINTS>> {
+    let mut curves = vec![];
+    for (sign, side) in [(1.0, "positive"), (-1.0, "negative")] {
+        let env = first_excursions(twist, torque, sign);
+        let pts = idealise(&env).ok_or_else(|| {
+            anyhow!(
+                "{}: the {side} direction has {} samples at a new largest twist with torque of the same sign, and needs at least 3 that go past cracking to idealise a primary curve: give a start file with --params START.json",
+                file.display(),
+                env.len()
+            )
+        })?;
+        curves.push(fit_envelope(&env, &valid_start(&pts)));
+    }
+    PhmParams::new(&curves[0], &curves[1], Coefficients::thesis())
+        .map_err(|e| anyhow!("{}: the idealised start is not valid: {e}", file.display()))
+}
+
+/// Runs `hyst fit --model phm-torsion`.
+pub fn fit(args: &FitArgs) -> Result<()> {
+    for (given, name) in [
+        (args.mass.is_some(), "--mass"),
+        (args.pareto.is_some(), "--pareto"),
+        (args.bits.is_some(), "--bits"),
+        (args.sample_rate.is_some(), "--sample-rate"),
+    ] {
+        if given {
+            bail!("{name} is for the Bouc-Wen fits; the PHM fit takes a twist-driven record");
+        }
+    }
+    if !["auto", "lsq"].contains(&args.method.as_str()) {
+        bail!(
+            "--method {}: the PHM is fitted by bounded least squares (lsq)",
+            args.method
+        );
+    }
+    let start_file = args.params.as_deref().map(PhmFile::read).transpose()?;
+    let (tu, mu) = start_file
+        .as_ref()
+        .map_or((Unit::Degree, Unit::KilonewtonMetre), |f| f.data_units);
+    let record = data::read(&args.data, &ReadOptions::default())?;
+    for n in record.notices() {
+        eprintln!("note: {n}");
+    }
+    let twist = channel(&record, Channel::Displacement, tu)?;
+    let torque = channel(&record, Channel::Force, mu)?;
+    let start = match &start_file {
+        Some(f) => f.params.clone(),
+        None => idealised_start(&args.data, &twist, &torque)?,
+    };
+    let problem = PhmProblem::new(&twist, &torque, &start, &args.fix)?;
+    let bar = Bar::new(&format!("fit {PHM_MODEL} (lsq)"), args.json);
+    let t0 = Instant::now();
+    let outcome = problem.solve(|i, nrmse| bar.improved(i, nrmse))?;
+    bar.finish();
+    let seconds = t0.elapsed().as_secs_f64();
+    let points_std = |d: usize| json!(outcome.point_std[d]);
+    let std: Map<String, Value> = outcome
+        .std
+        .iter()
+        .map(|(n, s)| (n.clone(), json!(s)))
+        .collect();
+    let meta = json!({
+        "data": args.data.display().to_string(),
+        "method": "lsq",
+        "start": args.params.as_ref().map_or("idealised from the envelope".to_string(), |p| p.display().to_string()),
+        "nrmse": outcome.nrmse,
+        "iterations": outcome.iterations,
+        "simulations": outcome.evaluations,
+        "seconds": seconds,
+        "std": std,
+        "primary_std": { "positive": points_std(0), "negative": points_std(1) },
+        "fixed": problem.vars.iter().filter(|v| v.fixed).map(|v| json!([v.name, v.start])).collect::<Vec<_>>(),
+        "identifiability": outcome.identifiability,
+    });
+    let file = phm_json(&outcome.params, (tu, mu), Some(meta.clone()));
+    if let Some(out) = &args.out {
+        std::fs::write(out, serde_json::to_string_pretty(&file)? + "\n")
+            .with_context(|| format!("{}: cannot write", out.display()))?;
+    }
+    if args.json {
+        let params: Map<String, Value> = ["primary", "coefficients"]
+            .iter()
+            .map(|k| (k.to_string(), file[*k].clone()))
+            .collect();
+        let obj = json!({
+            "model": PHM_MODEL,
+            "nrmse": outcome.nrmse,
+            "params": params,
+            "units": file["units"],
+            "std": meta["std"],
+            "primary_std": meta["primary_std"],
+            "iterations": outcome.iterations,
+            "simulations": outcome.evaluations,
+            "seconds": seconds,
+            "identifiability": outcome.identifiability,
+            "identifiability_summary": outcome.identifiability.summary(),
+        });
+        println!("{}", serde_json::to_string_pretty(&obj)?);
+        return Ok(());
+    }
+    println!(
+        "model {PHM_MODEL}  method lsq  NRMSE {:.4e}  ({} iterations, {} simulations, {seconds:.2} s)",
+        outcome.nrmse, outcome.iterations, outcome.evaluations
+    );
+    for (d, dir) in [Direction::Positive, Direction::Negative]
+        .into_iter()
+        .enumerate()
+    {
+        println!(
+            "  primary curve, {} (twist {tu}, torque {mu}, +- standard error):",
+            ["positive", "negative"][d]
+        );
+        for (p, s) in outcome
+            .params
+            .primary(dir)
+            .points()
+            .iter()
+            .zip(&outcome.point_std[d])
+        {
+            println!(
+                "    ({:.5} +- {:.2e}, {:.4} +- {:.2e})",
+                p[0], s[0], p[1], s[1]
+            );
+        }
+    }
+    let base: usize = outcome.params.primary(Direction::Positive).points().len() * 2
+        + outcome.params.primary(Direction::Negative).points().len() * 2;
+    for v in &problem.vars[base..] {
+        let value = outcome
+            .params
+            .coefficients()
+            .get(&v.name)
+            .unwrap_or(v.start);
+        let note = match outcome.std.iter().find(|(n, _)| n == &v.name) {
+            Some((_, s)) => format!("+- {s:.2e}"),
+            None => "(fixed)".to_string(),
+        };
+        println!("  {:<10} {value:>12.5}  {note}", v.name);
+    }
+    println!("{}", outcome.identifiability.summary());
+    if let Some(out) = &args.out {
+        println!("parameters written to {}", out.display());
+    }
+    Ok(())
+}
