@@ -98,10 +98,10 @@ fn history_loop<S: Scalar>() {
     black_box(acc);
 }
 
-fn bs32(tol: f32) -> Control<Fixed> {
+fn bs32<S: Scalar>(tol: f32) -> Control<S> {
     Control {
         method: Method::Bs32,
-        tol: Fixed::lit(tol),
+        tol: S::lit(tol),
         ..Control::default_for()
     }
 }
@@ -110,6 +110,8 @@ fn bs32(tol: f32) -> Control<Fixed> {
 fn main() -> ! {
     for set in [Set::Plain, Set::All] {
         case::<f32>("default", set, Control::default_for());
+        case::<f32>("tol-3e-5", set, bs32(3e-5));
+        case::<f32>("tol-1e-4", set, bs32(1e-4));
         case::<Fixed>("default", set, Control::default_for());
         case::<Fixed>("tol-5e-4", set, bs32(5e-4));
         case::<Fixed>("tol-2e-4", set, bs32(2e-4));
