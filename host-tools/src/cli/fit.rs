@@ -145,6 +145,11 @@ pub fn load(path: &PathBuf, sample_rate: Option<f64>, mass: Option<f64>) -> Resu
     if let Some(hz) = sample_rate {
         opts = opts.sample_rate(hz);
     }
+    // A mass means the oscillator of eq. 3.3: the force is the input, also
+    // in records whose columns would default to a displacement input.
+    if mass.is_some() {
+        opts = opts.input(data::Channel::Force);
+    }
     let record = data::read(path, &opts)?;
     for n in record.notices() {
         eprintln!("note: {n}");

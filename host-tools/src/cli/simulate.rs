@@ -39,6 +39,15 @@ pub struct SimulateArgs {
     /// Also write the force-displacement loop as SVG.
     #[arg(long)]
     pub plot: Option<PathBuf>,
+    /// Drive by force (the oscillator of thesis eq. 3.3, as `hyst fit --mass`
+    /// fits it): the history's force column is the input and the
+    /// displacement is predicted. The mass in kg; when left out, a fit
+    /// file's `m` is used (such a file also selects the force drive).
+    #[arg(long)]
+    pub mass: Option<f64>,
+    /// Sample rate in Hz, for force histories without a time column.
+    #[arg(long)]
+    pub sample_rate: Option<f64>,
     /// PHM only: print one JSON object (units, peak torque, the columns)
     /// instead of the CSV (which then goes to `--out` only).
     #[arg(long)]
@@ -108,11 +117,21 @@ pub fn run(args: SimulateArgs) -> Result<()> {
     }
     let file = ParamFile::read(&args.params)?;
     let spec = file.spec(spec)?;
+    let mut opts = ReadOptions::default();
+    if let Some(hz) = args.sample_rate {
+        opts = opts.sample_rate(hz);
+    }
+    // A mass, or a fit of the oscillator (its file carries `m`), means the
+    // force drives.
+    if args.mass.is_some() || file.values.contains_key("m") {
+        opts = opts.input(Channel::Force);
+    }
+    let record = data::read(&args.history, &opts)?;
+    if record.input_channel() == Channel::Force && !record.is_torsion() {
+        return forced(&args, &file, spec, &record);
+    }
+    let record = data::read(&args.history, &opts.input(Channel::Displacement))?;
     let (params, extras) = file.build(spec, false)?;
-    let record = data::read(
-        &args.history,
-        &ReadOptions::default().input(Channel::Displacement),
-    )?;
     for n in record.notices() {
         eprintln!("note: {n}");
     }
@@ -152,6 +171,94 @@ pub fn run(args: SimulateArgs) -> Result<()> {
             &traces,
             Quantity::new("Displacement", "mm"),
             Quantity::new("Force", "kN"),
+        )?;
+        std::fs::write(path, fig.to_svg())
+            .with_context(|| format!("{}: cannot write", path.display()))?;
+    }
+    Ok(())
+}
+
+/// `hyst simulate` driven by force: writes `time,force,displacement` (the
+/// predicted displacement) and, when the record has one, reports the RMS
+/// error against the measured displacement.
+fn forced(
+    args: &SimulateArgs,
+    file: &ParamFile,
+    spec: crate::model::ModelSpec,
+    record: &data::Record,
+) -> Result<()> {
+    let src = args.history.display();
+    let mass = match (args.mass, file.values.get("m")) {
+        (Some(m), _) | (None, Some(&m)) => m,
+        (None, None) => bail!(
+            "{src}: the record is driven by force, so the oscillator needs its mass: give --mass KG (or an `m` in {})",
+            file.path.display()
+        ),
+    };
+    if !(mass.is_finite() && mass > 0.0) {
+        bail!("the mass must be a positive number of kg, got {mass}");
+    }
+    let xi = *file.values.get("xi").ok_or_else(|| {
+        anyhow!(
+            "{}: no `xi` (viscous damping ratio): a force-driven simulation needs the parameters of a force-driven fit",
+            file.path.display()
+        )
+    })?;
+    let (params, extras) = file.build(spec, true)?;
+    let dt = crate::fit::experiment::uniform_step(record)?;
+    let force = record
+        .force()
+        .ok_or_else(|| anyhow!("{src}: no force column to drive the oscillator"))?;
+    let measured = record.displacement();
+    let exp = crate::fit::experiment::Experiment {
+        input: force.to_vec(),
+        output: measured.map_or_else(|| vec![0.0; force.len()], <[f64]>::to_vec),
+        drive: crate::fit::experiment::Drive::Force {
+            dt,
+            mass: mass * 1e-6,
+        },
+    };
+    let sim = exp
+        .simulate(&params, &extras, xi, Control::default_for())
+        .map_err(|e| anyhow!("{src}: {e}"))?;
+    let time: Vec<f64> = (0..force.len()).map(|i| i as f64 * dt).collect();
+    let mut out: Box<dyn Write> = match &args.out {
+        Some(p) => Box::new(
+            std::fs::File::create(p).with_context(|| format!("{}: cannot create", p.display()))?,
+        ),
+        None => Box::new(std::io::stdout().lock()),
+    };
+    data::write_columns(
+        &mut out,
+        &[],
+        &[
+            ("time", &time),
+            ("force", force),
+            ("displacement", &sim.displacement),
+        ],
+    )?;
+    if let Some(u) = measured {
+        let n = u.len() as f64;
+        let rms = |v: &mut dyn Iterator<Item = f64>| (v.map(|x| x * x).sum::<f64>() / n).sqrt();
+        let err = rms(&mut u.iter().zip(&sim.displacement).map(|(a, b)| a - b));
+        let scale = rms(&mut u.iter().copied());
+        eprintln!(
+            "displacement RMS error {err:.4e} mm ({:.4e} m), {:.3}% of the measured RMS {scale:.4e} mm",
+            err * 1e-3,
+            100.0 * err / scale
+        );
+    }
+    if let Some(path) = &args.plot {
+        let name = spec.to_string();
+        let mut traces = vec![];
+        if let Some(u) = measured {
+            traces.push(Trace::measured("measured", u, force));
+        }
+        traces.push(Trace::model(&name, &sim.displacement, force));
+        let fig = loop_overlay(
+            &traces,
+            Quantity::new("Displacement", "mm"),
+            Quantity::new("Applied force", "kN"),
         )?;
         std::fs::write(path, fig.to_svg())
             .with_context(|| format!("{}: cannot write", path.display()))?;

@@ -201,21 +201,7 @@ impl Experiment {
                 if !(mass.is_finite() && mass > 0.0) {
                     bail!("--mass must be a positive number of kg, got {mass}");
                 }
-                let t = record.time().ok_or_else(|| {
-                    anyhow!("{src}: a force-driven record needs a time column or --sample-rate")
-                })?;
-                if t.len() < 2 {
-                    bail!("{src}: a force-driven record needs at least two samples");
-                }
-                let dt = (t[t.len() - 1] - t[0]) / (t.len() - 1) as f64;
-                if let Some(i) = (1..t.len()).find(|&i| ((t[i] - t[i - 1]) - dt).abs() > 1e-6 * dt)
-                {
-                    bail!(
-                        "{src}: sample {} is {} s after the previous one, not {dt} s: force-driven fits need uniform sampling",
-                        i + 1,
-                        t[i] - t[i - 1]
-                    );
-                }
+                let dt = uniform_step(record)?;
                 // kg = N s^2/m = 1e-6 kN s^2/mm
                 Ok(Experiment {
                     input: f.to_vec(),
@@ -228,4 +214,26 @@ impl Experiment {
             }
         }
     }
+}
+
+/// The time step of a force-driven record, which must be uniform (the
+/// oscillator is stepped sample by sample).
+pub fn uniform_step(record: &crate::data::Record) -> anyhow::Result<f64> {
+    use anyhow::{anyhow, bail};
+    let src = record.source().display();
+    let t = record.time().ok_or_else(|| {
+        anyhow!("{src}: a force-driven record needs a time column or --sample-rate")
+    })?;
+    if t.len() < 2 {
+        bail!("{src}: a force-driven record needs at least two samples");
+    }
+    let dt = (t[t.len() - 1] - t[0]) / (t.len() - 1) as f64;
+    if let Some(i) = (1..t.len()).find(|&i| ((t[i] - t[i - 1]) - dt).abs() > 1e-6 * dt) {
+        bail!(
+            "{src}: sample {} is {} s after the previous one, not {dt} s: force-driven models need uniform sampling",
+            i + 1,
+            t[i] - t[i - 1]
+        );
+    }
+    Ok(dt)
 }
