@@ -159,12 +159,14 @@ pub fn refit(
     Ok((richer, out))
 }
 
-/// Effective sample size of a residual: `n (1 - rho)/(1 + rho)`, at least
-/// `k + 2`.
-pub fn effective_n(r: &[f64], k: usize) -> f64 {
+/// Effective sample size of a residual: `n (1 - rho)/(1 + rho)` (rho its
+/// lag-one autocorrelation), but never below `floor` (the number of
+/// half-cycles, see [`weigh`]) nor `k + 2`, and never above `n`.
+pub fn effective_n(r: &[f64], k: usize, floor: usize) -> f64 {
     let n = r.len() as f64;
     let rho = lag1(r).clamp(0.0, 0.999);
-    (n * (1.0 - rho) / (1.0 + rho)).clamp((k + 2) as f64, n.max((k + 2) as f64))
+    let lower = floor.max(k + 2) as f64;
+    (n * (1.0 - rho) / (1.0 + rho)).clamp(lower.min(n), n.max(lower))
 }
 
 /// BIC of a fit with `cost` (proportional to RSS) and `k` parameters.
@@ -301,14 +303,22 @@ pub fn weigh(
         .min_by(|a, b| a.cost.total_cmp(&b.cost))
         .copied()
         .unwrap_or(&base);
-    let mut n_eff = effective_n(&best.residual, best.k);
+    // Residuals of a model that misses physics are correlated along the
+    // record, which shrinks the effective sample size; on real columns, whose
+    // physics no candidate captures completely, it would fall to a handful
+    // and nothing could ever be significant. Each loading excursion
+    // (half-cycle) is a separate test of the model, so their number is the
+    // floor. On records a candidate explains, its residual is white and this
+    // floor does not bind.
+    let floor = diagnosis.segmentation.cycles().half_cycles().len();
+    let mut n_eff = effective_n(&best.residual, best.k, floor);
     for _ in 0..4 {
         let next = all
             .iter()
             .min_by(|a, b| bic(a.cost, a.k, n_eff).total_cmp(&bic(b.cost, b.k, n_eff)))
             .copied()
             .unwrap_or(&base);
-        let n_next = effective_n(&next.residual, next.k);
+        let n_next = effective_n(&next.residual, next.k, floor);
         let stable = std::ptr::eq(next, best);
         best = next;
         n_eff = n_next;
@@ -336,9 +346,6 @@ pub fn weigh(
             let effect = single.effects[0];
             let signature = signatures.iter().find(|(e, _)| *e == effect).and_then(|(_, s)| s.clone());
             let in_best = best.effects.contains(&effect);
-            // In M*: the BIC cost of removing it. Outside: the change of
-            // adding it to M* where that model was fitted, else to the
-            // current model.
             // In M*: the BIC cost of removing it. Outside: the change of
             // adding it to M* where that model was fitted; else its own
             // change of the current model, which M* beats.
