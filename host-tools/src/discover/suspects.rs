@@ -439,7 +439,7 @@ mod tests {
         let white: Vec<f64> = (0..1000)
             .map(|i| if i % 2 == 0 { 1.0 } else { -1.0 } * 0.1)
             .collect();
-        let n_eff = effective_n(&white, 11);
+        let n_eff = effective_n(&white, 11, 0);
         assert_eq!(
             n_eff, 1000.0,
             "alternating residuals have negative rho, clamped to 0"
@@ -453,8 +453,11 @@ mod tests {
         assert!(d < -2000.0, "{d}");
         // Strongly correlated residuals count for far fewer samples.
         let smooth: Vec<f64> = (0..1000).map(|i| (i as f64 * 0.01).sin()).collect();
-        let n_corr = effective_n(&smooth, 11);
+        let n_corr = effective_n(&smooth, 11, 0);
         assert!(n_corr < 15.0, "{n_corr}");
         assert!(bic(0.05, 11, n_corr) - bic(1.0, 5, n_corr) > d);
+        // But never fewer than the half-cycles (the floor), nor more than n.
+        assert_eq!(effective_n(&smooth, 11, 64), 64.0);
+        assert_eq!(effective_n(&white, 11, 5000), 1000.0);
     }
 }
