@@ -29,7 +29,12 @@ const FS: f64 = 750.0;
 fn read(path: &PathBuf) -> (Vec<f64>, Vec<f64>) {
     let text = std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
     let mut lines = text.lines();
-    assert_eq!(lines.next().map(str::trim), Some("u_N,y_m"), "{}", path.display());
+    assert_eq!(
+        lines.next().map(str::trim),
+        Some("u_N,y_m"),
+        "{}",
+        path.display()
+    );
     lines
         .filter(|l| !l.trim().is_empty())
         .map(|l| {
@@ -61,7 +66,12 @@ fn rmse_m(
         u.to_vec()
     };
     let m = fine.len();
-    let input: Vec<f64> = fine.iter().copied().cycle().take(m * (warmup + 1)).collect();
+    let input: Vec<f64> = fine
+        .iter()
+        .copied()
+        .cycle()
+        .take(m * (warmup + 1))
+        .collect();
     let exp = Experiment {
         output: vec![0.0; input.len()],
         input,
@@ -77,7 +87,6 @@ fn rmse_m(
     let se: f64 = sim.zip(y).map(|(a, b)| (a - b).powi(2)).sum();
     Ok((se / n as f64).sqrt() * 1e-3)
 }
-
 
 /// In-place radix-2 complex FFT (`inverse` scales by 1/n). Length must be a
 /// power of two. Used to interpolate band-limited periodic test signals.
@@ -146,7 +155,10 @@ fn interpolate_periodic(x: &[f64], factor: usize) -> Vec<f64> {
 
 fn main() {
     let mut args = std::env::args().skip(1);
-    let fit = PathBuf::from(args.next().expect("usage: benchmark_test FIT.json [CSV_DIR]"));
+    let fit = PathBuf::from(
+        args.next()
+            .expect("usage: benchmark_test FIT.json [CSV_DIR]"),
+    );
     let dir = PathBuf::from(
         args.next()
             .unwrap_or_else(|| "../shared/data/boucwen-benchmark/csv".into()),
@@ -155,7 +167,11 @@ fn main() {
     let spec = file.spec(None).unwrap_or_else(|e| panic!("{e:#}"));
     let (params, extras) = file.build(spec, true).unwrap_or_else(|e| panic!("{e:#}"));
     let xi = file.values.get("xi").copied().unwrap_or(0.0);
-    let mass = file.values.get("m").copied().expect("the fit file has no mass m");
+    let mass = file
+        .values
+        .get("m")
+        .copied()
+        .expect("the fit file has no mass m");
 
     // The true model in mm, kN: k0 = kL + a = 1e5 N/m = 0.1 kN/mm, alpha 0.5,
     // beta = b g = 800 /m = 0.8 /mm, gamma = b d = -1100 /m = -1.1 /mm, n 1;
@@ -164,8 +180,13 @@ fn main() {
     let xi_true = 10.0 / (2.0 * (1e5f64 * 2.0).sqrt());
     let none = Extras::default();
 
-    println!("fit {} (model {spec}, m {mass} kg, xi {xi:.5e})", fit.display());
-    println!("test set                   samples  rms(y) m    RMSE fit m  RMSE truth m (same path)");
+    println!(
+        "fit {} (model {spec}, m {mass} kg, xi {xi:.5e})",
+        fit.display()
+    );
+    println!(
+        "test set                   samples  rms(y) m    RMSE fit m  RMSE truth m (same path)"
+    );
     for (name, warmup, factor) in [
         ("test_multisine.csv", 2, 1),
         ("test_multisine.csv", 2, 16),
