@@ -100,12 +100,17 @@ fn lag1(r: &[f64]) -> f64 {
 /// Initial values held at 1 when their effect is added.
 const CANONICAL: [(&str, f64); 3] = [("nu0", 1.0), ("eta0", 1.0), ("A0", 1.0)];
 
-/// Refits `problem`'s model with `effect` added, from the fit `outcome`.
+/// Refits `problem`'s model with `effect` added, from the fit `outcome`;
+/// with `cold`, and when that fit sits on a bound of its range, also afresh
+/// as `hyst fit` would (eight starts from the default): a base fit stuck in a
+/// corner, as a near-linear spring on a shear-critical column, cannot be
+/// left by varying only the new parameters.
 pub fn refit(
     problem: &Problem,
     outcome: &Outcome,
     effect: EffectRef,
     starts: usize,
+    cold: bool,
 ) -> Result<(Problem, Outcome)> {
     let spec = problem.par.spec.with(effect);
     let mut fixed: Vec<(String, f64)> = problem
@@ -144,18 +149,47 @@ pub fn refit(
             x
         })
         .collect();
+
     let f = |x: &[f64]| richer.residuals(x);
-    let evals = std::sync::atomic::AtomicUsize::new(0);
-    let best = starts
-        .par_iter()
-        .filter_map(|s| {
-            let sol = lsq::minimize(&f, s, &lo, &hi, Options::default())?;
-            evals.fetch_add(sol.evaluations, std::sync::atomic::Ordering::Relaxed);
-            Some(sol)
-        })
-        .min_by(|a, b| a.cost.total_cmp(&b.cost))
-        .ok_or_else(|| anyhow::anyhow!("{spec} cannot be simulated from the warm start"))?;
-    let out = run::finish(&richer, "lsq (warm)", best, evals.into_inner())?;
+    let warm = || {
+        let evals = std::sync::atomic::AtomicUsize::new(0);
+        let best = starts
+            .par_iter()
+            .filter_map(|s| {
+                let sol = lsq::minimize(&f, s, &lo, &hi, Options::default())?;
+                evals.fetch_add(sol.evaluations, std::sync::atomic::Ordering::Relaxed);
+                Some(sol)
+            })
+            .min_by(|a, b| a.cost.total_cmp(&b.cost))
+            .ok_or_else(|| anyhow::anyhow!("{spec} cannot be simulated from the warm start"))?;
+        run::finish(&richer, "lsq (warm)", best, evals.into_inner())
+    };
+    let (plo, phi) = problem.par.bounds();
+    let cornered = outcome
+        .x
+        .iter()
+        .zip(plo.iter().zip(&phi))
+        .any(|(x, (l, h))| (x - l).abs() <= 1e-9 * (h - l) || (h - x).abs() <= 1e-9 * (h - l));
+    let fresh = || {
+        (cold && cornered)
+            .then(|| {
+                run::fit(
+                    &richer,
+                    run::Method::Auto,
+                    &richer.par.default_start(),
+                    &run::Quiet,
+                )
+                .ok()
+            })
+            .flatten()
+    };
+    let (warm, fresh) = rayon::join(warm, fresh);
+    let out = match (warm, fresh) {
+        (Ok(w), Some(c)) if c.scores.nrmse < w.scores.nrmse => c,
+        (Ok(w), _) => w,
+        (Err(_), Some(c)) => c,
+        (Err(e), None) => return Err(e),
+    };
     Ok((richer, out))
 }
 
@@ -248,16 +282,18 @@ pub fn weigh(
     // Singles.
     let singles: Vec<Fitted> = candidates
         .par_iter()
-        .map(|&e| match refit(problem, outcome, e, options.starts) {
-            Ok((p, o)) => fitted(vec![e], p, o),
-            Err(_) => Fitted {
-                effects: vec![e],
-                cost: f64::INFINITY,
-                k: 0,
-                residual: vec![],
-                fit: None,
+        .map(
+            |&e| match refit(problem, outcome, e, options.starts, true) {
+                Ok((p, o)) => fitted(vec![e], p, o),
+                Err(_) => Fitted {
+                    effects: vec![e],
+                    cost: f64::INFINITY,
+                    k: 0,
+                    residual: vec![],
+                    fit: None,
+                },
             },
-        })
+        )
         .collect();
     // Pairs among the best singles, from the better single of each pair.
     let mut order: Vec<usize> = (0..singles.len())
@@ -276,7 +312,7 @@ pub fn weigh(
         .filter_map(|&(a, b)| {
             let (from, other) = (&singles[a], singles[b].effects[0]);
             let (p, o) = from.fit.as_ref()?;
-            let (p2, o2) = refit(p, o, other, 2).ok()?;
+            let (p2, o2) = refit(p, o, other, 2, false).ok()?;
             Some(fitted(vec![from.effects[0], other], p2, o2))
         })
         .collect();
@@ -340,6 +376,30 @@ pub fn weigh(
         let names: Vec<&str> = best.effects.iter().map(|e| e.name()).collect();
         format!("the model with {}", names.join(" and "))
     };
+    // Two effects that share the work (pinching and strength degradation on
+    // a shear-critical column) can each be dispensable given the other while
+    // together they beat the current model by far. Then the one whose
+    // removal costs the most is significant: the ladder adds it first, and
+    // the other is weighed again on the next rung.
+    let joint = best_bic - bic(base.cost, base.k, n_eff);
+    let removal = |effect: &EffectRef| -> f64 {
+        let without: Vec<EffectRef> = best
+            .effects
+            .iter()
+            .copied()
+            .filter(|e| e != effect)
+            .collect();
+        find(&without).map_or(f64::NEG_INFINITY, |w| best_bic - bic(w.cost, w.k, n_eff))
+    };
+    let lead =
+        if joint < SIGNIFICANT_BIC && best.effects.iter().all(|e| removal(e) >= SIGNIFICANT_BIC) {
+            best.effects
+                .iter()
+                .copied()
+                .min_by(|a, b| removal(a).total_cmp(&removal(b)))
+        } else {
+            None
+        };
     let mut suspects: Vec<Suspect> = singles
         .iter()
         .map(|single| {
@@ -359,9 +419,7 @@ pub fn weigh(
                 };
                 (d, Relation::NoSignature)
             } else if in_best {
-                let without: Vec<EffectRef> = best.effects.iter().copied().filter(|e| *e != effect).collect();
-                let d = find(&without).map_or(f64::NEG_INFINITY, |w| best_bic - bic(w.cost, w.k, n_eff));
-                (d, Relation::InBest)
+                (removal(&effect), Relation::InBest)
             } else if let Some(w) = find(&with) {
                 (bic(w.cost, w.k, n_eff) - best_bic, Relation::AddedToBest)
             } else if single.fit.is_some() {
@@ -370,7 +428,8 @@ pub fn weigh(
             } else {
                 (f64::INFINITY, Relation::Unfitted)
             };
-            let significant = in_best && delta < SIGNIFICANT_BIC;
+            let leads = lead == Some(effect);
+            let significant = in_best && (delta < SIGNIFICANT_BIC || leads);
             let nrmse_with = single.cost.sqrt();
             let added = single.k.saturating_sub(base.k);
             let mut evidence = if single.fit.is_some() {
@@ -387,6 +446,10 @@ pub fn weigh(
             };
             let best_nrmse = best.cost.sqrt();
             match relation {
+                Relation::InBest if leads => evidence.push_str(&format!(
+                    "It belongs to the best model found, {best_name} (NRMSE {best_nrmse:.4}), whose BIC rises by {:.0} without it; together its effects change the current model's BIC by {joint:+.0}, and this one weighs most: significant.",
+                    -delta
+                )),
                 Relation::InBest => evidence.push_str(&format!(
                     "It belongs to the best model found, {best_name} (NRMSE {best_nrmse:.4}), whose BIC rises by {:.0} without it{}.",
                     -delta,
