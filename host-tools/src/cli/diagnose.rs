@@ -83,7 +83,8 @@ pub fn initial_fit(
     bar: &Bar,
 ) -> Result<(Problem, Outcome)> {
     let exp = load(&common.data, common.sample_rate, common.mass)?;
-    let problem = Problem::new(common.model, exp, &common.fix)?;
+    let problem = Problem::new(common.model, exp, &common.fix)
+        .with_context(|| common.data.display().to_string())?;
     if problem.dim() == 0 {
         bail!(
             "every parameter of {} is fixed: nothing to fit",

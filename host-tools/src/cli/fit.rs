@@ -203,7 +203,8 @@ pub fn run(args: FitArgs) -> Result<()> {
         bail!("--params (a start file) is for --model {PHM_MODEL}");
     }
     let exp = load(&args.data, args.sample_rate, args.mass)?;
-    let problem = Problem::new(model, exp, &args.fix)?;
+    let problem =
+        Problem::new(model, exp, &args.fix).with_context(|| args.data.display().to_string())?;
     if problem.dim() == 0 {
         bail!("every parameter of {model} is fixed: nothing to fit");
     }

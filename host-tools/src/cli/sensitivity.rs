@@ -44,7 +44,7 @@ pub fn run(args: SensitivityArgs) -> Result<()> {
     let file = ParamFile::read(&args.params)?;
     let spec = file.spec(args.model)?;
     let exp = load(&args.data, args.sample_rate, args.mass)?;
-    let problem = Problem::new(spec, exp, &[])?;
+    let problem = Problem::new(spec, exp, &[]).with_context(|| args.data.display().to_string())?;
     file.build(spec, problem.par.dynamic)?;
     let values: BTreeMap<&str, f64> = file.values.iter().map(|(k, v)| (k.as_str(), *v)).collect();
     let x = problem.par.normalise(&values);

@@ -27,6 +27,14 @@ impl Problem {
     /// (physical values).
     pub fn new(spec: ModelSpec, exp: Experiment, fixed: &[(String, f64)]) -> Result<Self> {
         let par = Parametrization::new(spec, &exp, fixed)?;
+        if exp.len() <= par.dim() {
+            anyhow::bail!(
+                "the record has {} sample{}, too few to fit the {} free parameters of {spec} (it needs more samples than parameters)",
+                exp.len(),
+                if exp.len() == 1 { "" } else { "s" },
+                par.dim()
+            );
+        }
         let target = Target::new(&exp, ENVELOPE_FLOOR);
         // Fitting needs accurate, smooth predictions but not 1e-9: the
         // finite-difference Jacobian steps are 1e-6 of the parameter ranges.
@@ -198,5 +206,28 @@ impl super::nsga2::Problem for Ortiz<'_> {
     }
     fn objective_names(&self) -> Vec<String> {
         ["f1", "f2", "f3", "f4"].map(String::from).to_vec()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_record_shorter_than_the_parameter_count_is_refused() {
+        let exp = |n: usize| Experiment {
+            input: (0..n).map(|i| i as f64).collect(),
+            output: (0..n).map(|i| 2.0 * i as f64).collect(),
+            drive: Drive::Displacement,
+        };
+        let err = Problem::new(ModelSpec::BW, exp(5), &[])
+            .err()
+            .expect("5 samples for 5 parameters")
+            .to_string();
+        assert!(
+            err.contains("5 samples, too few to fit the 5 free parameters"),
+            "{err}"
+        );
+        assert!(Problem::new(ModelSpec::BW, exp(6), &[]).is_ok());
     }
 }
