@@ -221,8 +221,7 @@ mod tests {
             drive: Drive::Displacement,
         };
         let err = Problem::new(ModelSpec::BW, exp(5), &[])
-            .err()
-            .expect("5 samples for 5 parameters")
+            .expect_err("5 samples for 5 parameters")
             .to_string();
         assert!(
             err.contains("5 samples, too few to fit the 5 free parameters"),
