@@ -300,6 +300,80 @@ impl ConcreteDamagedPlasticity {
         }
     }
 
+    /// One step of a material-point test: `deps` prescribed except on the
+    /// components `free` (normal components, kept equal to each other by
+    /// the symmetry of the loading), whose common strain increment is
+    /// found so that their stress is zero. The response has a kink at zero
+    /// stress (the corner of Lubliner's surface), so the solve brackets the
+    /// root and uses Illinois false position, to `1e-8 f_c`. Returns the
+    /// strain increment applied, or `None` (state and stress unchanged) if
+    /// no bracket or no convergence was found.
+    pub fn step_with_free_stress(
+        &self,
+        state: &mut CdpState,
+        stress: &mut [f64; 6],
+        deps: [f64; 6],
+        free: &[usize],
+    ) -> Option<[f64; 6]> {
+        let trial = |x: f64| {
+            let mut d = deps;
+            for &i in free {
+                d[i] = x;
+            }
+            let (mut st, mut s) = (*state, *stress);
+            self.update_point(&mut st, &d, &mut s);
+            (s[free[0]], st, s, d)
+        };
+        let nu = self.params.elastic.nu;
+        let driven: f64 = (0..3).filter(|i| !free.contains(i)).map(|i| deps[i]).sum();
+        let width = 1e-3 * driven.abs().max(1e-9);
+        let (mut a, mut b) = (-nu * driven - width, -nu * driven + width);
+        let (mut fa, mut fb) = (trial(a).0, trial(b).0);
+        for _ in 0..MAX_ITERATIONS {
+            if fa < 0.0 && fb > 0.0 {
+                break;
+            }
+            let w = b - a;
+            if fa >= 0.0 {
+                a -= w;
+                fa = trial(a).0;
+            }
+            if fb <= 0.0 {
+                b += w;
+                fb = trial(b).0;
+            }
+        }
+        if !(fa < 0.0 && fb > 0.0) {
+            return None;
+        }
+        let mut side = 0;
+        for _ in 0..2 * MAX_ITERATIONS {
+            let x = (a * fb - b * fa) / (fb - fa);
+            let (f, st, s, d) = trial(x);
+            if f.abs() < 1e-8 * self.params.fc || b - a <= 1e-15 * b.abs().max(a.abs()) {
+                *state = st;
+                *stress = s;
+                return Some(d);
+            }
+            if f < 0.0 {
+                a = x;
+                fa = f;
+                if side == -1 {
+                    fb *= 0.5;
+                }
+                side = -1;
+            } else {
+                b = x;
+                fb = f;
+                if side == 1 {
+                    fa *= 0.5;
+                }
+                side = 1;
+            }
+        }
+        None
+    }
+
     /// The state after a plastic multiplier `dl`: mean stress, deviator
     /// scale, hardening increments and the yield function there.
     fn at_multiplier(&self, t: &Trial, state: &CdpState, dl: f64) -> Return {
@@ -524,70 +598,18 @@ mod tests {
             }
         }
 
-        /// One step with `deps` prescribed except on `free`, whose
-        /// components share one strain increment (the loading keeps them
-        /// equal by symmetry), found so that their stress is zero: a
-        /// bracket, then Illinois false position (the response has a kink
-        /// at zero stress, where Lubliner's surface has its corner).
+        /// One step with the stress on `free` held at zero.
         fn mixed(&mut self, mat: &ConcreteDamagedPlasticity, deps: [f64; 6], free: &[usize]) {
-            let trial = |x: f64| {
-                let mut d = deps;
-                for &i in free {
-                    d[i] = x;
-                }
-                let mut p = *self;
-                p.step(mat, &d);
-                (p.stress[free[0]], p)
-            };
-            let nu = mat.params().elastic.nu;
-            let driven: f64 = (0..3).filter(|i| !free.contains(i)).map(|i| deps[i]).sum();
-            let width = 1e-3 * driven.abs().max(1e-9);
-            let (mut a, mut b) = (-nu * driven - width, -nu * driven + width);
-            let (mut fa, mut fb) = (trial(a).0, trial(b).0);
-            for _ in 0..100 {
-                if fa < 0.0 && fb > 0.0 {
-                    break;
-                }
-                let w = b - a;
-                if fa >= 0.0 {
-                    a -= w;
-                    fa = trial(a).0;
-                }
-                if fb <= 0.0 {
-                    b += w;
-                    fb = trial(b).0;
-                }
+            let mut p = *self;
+            let d = mat
+                .step_with_free_stress(&mut p.state, &mut p.stress, deps, free)
+                .unwrap_or_else(|| panic!("no zero-stress step at strain {:?}", self.strain));
+            let mid: [f64; 6] = std::array::from_fn(|i| 0.5 * (self.stress[i] + p.stress[i]));
+            p.work += double_dot(&mid, &d);
+            for i in 0..6 {
+                p.strain[i] += d[i];
             }
-            assert!(
-                fa < 0.0 && fb > 0.0,
-                "no bracket at strain {:?}",
-                self.strain
-            );
-            let mut side = 0;
-            for _ in 0..200 {
-                let x = (a * fb - b * fa) / (fb - fa);
-                let (f, p) = trial(x);
-                if f.abs() < 1e-8 * FC || b - a < 1e-18 {
-                    *self = p;
-                    return;
-                }
-                if f < 0.0 {
-                    a = x;
-                    fa = f;
-                    if side == -1 {
-                        fb *= 0.5;
-                    }
-                    side = -1;
-                } else {
-                    b = x;
-                    fb = f;
-                    if side == 1 {
-                        fa *= 0.5;
-                    }
-                    side = 1;
-                }
-            }
-            panic!("mixed control did not converge at strain {:?}", self.strain);
+            *self = p;
         }
 
         /// Stored energy `(1 - d) psi0(sigma_bar) = sigma : C0^-1 : sigma / (2 (1 - d))`.
