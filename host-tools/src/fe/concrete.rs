@@ -133,6 +133,11 @@ pub struct CdpState {
     pub kappa_t: f64,
     /// Compressive equivalent plastic strain `kc`.
     pub kappa_c: f64,
+    /// Tensile damage `d_t(kt)`, kept so that elastic steps need not
+    /// evaluate it.
+    pub damage_t: f64,
+    /// Compressive damage `d_c(kc)`, likewise.
+    pub damage_c: f64,
     /// Damage `d` applied to the current stress (recovers the effective
     /// stress, which the solver rotates as part of the stress).
     pub damage: f64,
@@ -156,6 +161,9 @@ pub struct ConcreteDamagedPlasticity {
     kappa_peak: f64,
     /// Cracking strain `f_t / E`.
     eps_cr: f64,
+    /// Whether `beta >= 0` for every cohesion (`c_c >= elastic_limit f_c`),
+    /// so that `F` grows with the largest principal stress.
+    beta_nonnegative: bool,
 }
 
 impl ConcreteDamagedPlasticity {
@@ -177,18 +185,21 @@ impl ConcreteDamagedPlasticity {
         let eta_limit = 1.0 - (1.0 - p.elastic_limit).sqrt();
         let eps_c0 = p.elastic_limit * p.fc / (e * eta_limit);
         let tan_psi = p.dilation_deg.to_radians().tan();
+        let alpha = (p.biaxial_ratio - 1.0) / (2.0 * p.biaxial_ratio - 1.0);
+        let beta_min = p.elastic_limit * p.fc / p.ft * (1.0 - alpha) - (1.0 + alpha);
         ConcreteDamagedPlasticity {
             params,
             lambda,
             mu,
             bulk: lambda + 2.0 * mu / 3.0,
-            alpha: (p.biaxial_ratio - 1.0) / (2.0 * p.biaxial_ratio - 1.0),
+            alpha,
             gamma: 3.0 * (1.0 - p.kc) / (2.0 * p.kc - 1.0),
             tan_psi,
             hyper: p.eccentricity * p.ft * tan_psi,
             eps_c0,
             kappa_peak: eps_c0 - p.fc / e,
             eps_cr: p.ft / e,
+            beta_nonnegative: beta_min >= 0.0,
         }
     }
 
@@ -233,13 +244,12 @@ impl ConcreteDamagedPlasticity {
         (1.0 - ratio.powf(self.params.stiffening_exponent)).min(MAX_DAMAGE)
     }
 
-    /// Total damage for the hardening state and the tensile weight `r` of
-    /// the effective stress.
-    fn damage(&self, kappa_t: f64, kappa_c: f64, r: f64) -> f64 {
+    /// Total damage from the tensile and compressive damage and the
+    /// tensile weight `r` of the effective stress.
+    fn damage(&self, damage_t: f64, damage_c: f64, r: f64) -> f64 {
         let s_t = 1.0 - self.params.w_t * r;
         let s_c = 1.0 - self.params.w_c * (1.0 - r);
-        let keep = (1.0 - s_t * self.compressive_damage(kappa_c))
-            * (1.0 - s_c * self.tensile_damage(kappa_t));
+        let keep = (1.0 - s_t * damage_c) * (1.0 - s_c * damage_t);
         (1.0 - keep).min(MAX_DAMAGE)
     }
 
@@ -272,11 +282,25 @@ impl ConcreteDamagedPlasticity {
         for v in s_tr.iter_mut().take(3) {
             *v -= m_tr;
         }
-        let (d_max, d_min) = deviator_extremes(&s_tr);
         let q_tr = (1.5 * double_dot(&s_tr, &s_tr)).sqrt();
         let c_c = self.compressive_cohesion(state.kappa_c);
-        let f_tr = self.yield_function(m_tr + d_max, q_tr, 3.0 * m_tr, c_c);
         let tol = 1e-10 * self.params.fc;
+        // With beta >= 0, F grows with the largest principal stress, which
+        // is at most m + 2q/3: below that bound the step is elastic, and an
+        // undamaged point needs no principal values at all.
+        let surely_elastic = self.beta_nonnegative
+            && self.yield_function(m_tr + 2.0 * q_tr / 3.0, q_tr, 3.0 * m_tr, c_c) <= tol;
+        if surely_elastic && state.damage_t == 0.0 && state.damage_c == 0.0 {
+            *stress = trial;
+            state.damage = 0.0;
+            return;
+        }
+        let (d_max, d_min) = deviator_extremes(&s_tr);
+        let f_tr = if surely_elastic {
+            f64::NEG_INFINITY
+        } else {
+            self.yield_function(m_tr + d_max, q_tr, 3.0 * m_tr, c_c)
+        };
         let (m, rho) = if f_tr <= tol {
             (m_tr, 1.0)
         } else {
@@ -289,10 +313,12 @@ impl ConcreteDamagedPlasticity {
             let ret = self.plastic_return(&trial, state, f_tr, tol);
             state.kappa_t += ret.dkt;
             state.kappa_c += ret.dkc;
+            state.damage_t = self.tensile_damage(state.kappa_t);
+            state.damage_c = self.compressive_damage(state.kappa_c);
             (ret.m, ret.rho)
         };
         let r = tensile_weight(&principal(m, rho, d_max, d_min));
-        state.damage = self.damage(state.kappa_t, state.kappa_c, r);
+        state.damage = self.damage(state.damage_t, state.damage_c, r);
         let keep = 1.0 - state.damage;
         for i in 0..6 {
             let bar = rho * s_tr[i] + if i < 3 { m } else { 0.0 };
@@ -555,8 +581,8 @@ impl SolidMaterial for ConcreteDamagedPlasticity {
     }
 
     fn fields(&self, state: &CdpState, out: &mut Vec<f64>) {
-        out.push(self.tensile_damage(state.kappa_t));
-        out.push(self.compressive_damage(state.kappa_c));
+        out.push(state.damage_t);
+        out.push(state.damage_c);
         out.push(state.damage);
     }
 }
