@@ -331,16 +331,18 @@ pub fn secant_stiffness(samples: &[Sample], lo: f64, hi: f64) -> Option<f64> {
 /// Initial stiffness and cracking torque of an inelastic run. The initial
 /// stiffness is the least-squares slope through the origin of torque
 /// against twist over the samples whose torque lies between 10% and 30% of
-/// the largest torque (before cracking, past the start-up of the loading);
-/// the cracking torque is the torque of the first later sample whose secant
-/// stiffness `T / theta` is 10% below it. `None` when the secant never
-/// drops that far (an elastic run) or there are too few samples.
+/// the largest torque, taken before the torque first exceeds 30% (before
+/// cracking, past the start-up of the loading, not on the descending
+/// branch); the cracking torque is the torque of the first later sample
+/// whose secant stiffness `T / theta` is 10% below it. `None` when the
+/// secant never drops that far (an elastic run) or there are too few
+/// samples.
 pub fn cracking(samples: &[Sample]) -> Option<(f64, f64)> {
     let top = samples.iter().fold(0.0f64, |m, s| m.max(s.torque.abs()));
+    let rise = samples.iter().position(|s| s.torque.abs() > 0.3 * top)?;
     let (mut sxy, mut sxx) = (0.0, 0.0);
-    for s in samples {
-        let a = s.torque.abs();
-        if top > 0.0 && a >= 0.1 * top && a <= 0.3 * top {
+    for s in &samples[..rise] {
+        if s.torque.abs() >= 0.1 * top {
             sxy += s.twist * s.torque;
             sxx += s.twist * s.twist;
         }
@@ -349,9 +351,9 @@ pub fn cracking(samples: &[Sample]) -> Option<(f64, f64)> {
         return None;
     }
     let k0 = sxy / sxx;
-    samples
+    samples[rise..]
         .iter()
-        .find(|s| s.torque.abs() > 0.3 * top && (s.torque / s.twist).abs() < 0.9 * k0.abs())
+        .find(|s| (s.torque / s.twist).abs() < 0.9 * k0.abs())
         .map(|s| (k0, s.torque))
 }
 
@@ -399,7 +401,9 @@ mod tests {
     #[test]
     fn cracking_is_where_the_secant_falls_below_the_initial_stiffness() {
         // Bilinear: 2e7 N m/rad to 1e5 N m at 0.005 rad, then 1e6 N m/rad.
-        let s: Vec<Sample> = (0..=100)
+        // ... and a descending branch through 10-30% of the peak, which
+        // must not enter the initial stiffness.
+        let mut s: Vec<Sample> = (0..=100)
             .map(|i| {
                 let th = i as f64 * 0.0002;
                 sample(
@@ -412,6 +416,7 @@ mod tests {
                 )
             })
             .collect();
+        s.extend((1..=10).map(|i| sample(0.02 + 0.001 * i as f64, 1.15e5 - 1e4 * i as f64)));
         let (k0, tc) = cracking(&s).expect("cracks");
         assert!((k0 - 2e7).abs() < 1e-6);
         // Secant 1e5 (1 + 10 (th - 0.005)) / th < 1.8e7 first at th = 0.0056.
