@@ -21,8 +21,8 @@ pub struct FeArgs {
     /// Print the summary as one JSON object.
     #[arg(long)]
     pub json: bool,
-    /// Elastic concrete and steel (the only materials until issue 8 adds
-    /// damaged plasticity and steel yield).
+    /// Elastic concrete and steel instead of concrete damaged plasticity
+    /// and yielding steel (thesis 2.2).
     #[arg(long)]
     pub elastic: bool,
     /// Worker threads (overrides the specimen file).
@@ -37,12 +37,6 @@ pub struct FeArgs {
 /// files written so far, and still prints the summary.
 pub fn run_fe(args: FeArgs) -> anyhow::Result<()> {
     let spec = Specimen::load(&args.specimen)?;
-    if !args.elastic {
-        eprintln!(
-            "note: concrete damaged plasticity and steel yield (thesis 2.2) arrive with issue 8; \
-             this run is elastic"
-        );
-    }
     let stop = Arc::new(AtomicBool::new(false));
     let flag = stop.clone();
     ctrlc::set_handler(move || flag.store(true, Ordering::Relaxed))?;
@@ -56,22 +50,30 @@ pub fn run_fe(args: FeArgs) -> anyhow::Result<()> {
         threads: args.threads,
         element_size_mm: args.element_size,
     };
-    let summary = run(
-        &spec,
-        "elastic",
-        Elastic::new(spec.concrete()),
-        spec.steel(),
-        &opts,
-        &stop,
-        |p: &Progress| {
-            bar.set_length(p.steps);
-            bar.set_position(p.step);
-            bar.set_message(format!(
-                "t = {:.4e} s  T = {:.2} kN m  KE/IE = {:.3}",
-                p.t, p.torque_knm, p.ke_ie
-            ));
-        },
-    )?;
+    let show = |p: &Progress| {
+        bar.set_length(p.steps);
+        bar.set_position(p.step);
+        bar.set_message(format!(
+            "t = {:.4e} s  T = {:.2} kN m  KE/IE = {:.3}",
+            p.t, p.torque_knm, p.ke_ie
+        ));
+    };
+    let summary = if args.elastic {
+        let concrete = Elastic::new(spec.concrete());
+        run(&spec, "elastic", concrete, spec.steel(), &opts, &stop, show)?
+    } else {
+        let concrete = spec.concrete_damaged();
+        let steel = spec.steel_yielding();
+        run(
+            &spec,
+            "damaged-plasticity",
+            concrete,
+            steel,
+            &opts,
+            &stop,
+            show,
+        )?
+    };
     bar.finish_and_clear();
     if args.json {
         println!("{}", serde_json::to_string_pretty(&summary)?);
@@ -115,6 +117,12 @@ fn print_summary(s: &Summary) {
             s.saint_venant_stiffness
         ),
         None => println!("  initial stiffness: not enough twist yet"),
+    }
+    if let Some(t) = s.cracking_torque {
+        println!("  cracking torque {t:.2} kN m");
+    }
+    if let Some(t) = s.peak_torque {
+        println!("  peak torque {t:.2} kN m");
     }
     println!("  max torque {:.2} kN m", s.max_torque);
     println!(

@@ -5,8 +5,9 @@
 //! * [`specimen`]: specimen files (TOML) of circular and square columns.
 //! * [`mesh`], [`rebar`]: hexahedral meshes and embedded bars.
 //! * [`hex8`], [`material`]: the one-point hexahedron with hourglass
-//!   control, and the material traits (elastic here; damaged plasticity
-//!   and steel plug in through them).
+//!   control, and the material traits with the elastic materials.
+//! * [`concrete`], [`steel`]: concrete damaged plasticity and hardening
+//!   steel (thesis 2.2), tested at the material point.
 //! * [`model`], [`explicit`]: assembly, time step, mass scaling, the
 //!   central-difference solver with the rigid top.
 //! * [`quasi_static`], [`output`], [`run`]: energy checks, CSV and VTK
@@ -17,6 +18,7 @@
 #![allow(clippy::neg_cmp_op_on_partial_ord, clippy::needless_range_loop)]
 #[cfg(test)]
 mod checks;
+pub mod concrete;
 pub mod explicit;
 pub mod hex8;
 pub mod history;
@@ -29,3 +31,4 @@ pub mod rebar;
 pub mod run;
 pub mod simd;
 pub mod specimen;
+pub mod steel;

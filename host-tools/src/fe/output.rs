@@ -328,6 +328,35 @@ pub fn secant_stiffness(samples: &[Sample], lo: f64, hi: f64) -> Option<f64> {
     (sxx > 0.0).then(|| sxy / sxx)
 }
 
+/// Initial stiffness and cracking torque of an inelastic run. The initial
+/// stiffness is the least-squares slope through the origin of torque
+/// against twist over the samples whose torque lies between 10% and 30% of
+/// the largest torque, taken before the torque first exceeds 30% (before
+/// cracking, past the start-up of the loading, not on the descending
+/// branch); the cracking torque is the torque of the first later sample
+/// whose secant stiffness `T / theta` is 10% below it. `None` when the
+/// secant never drops that far (an elastic run) or there are too few
+/// samples.
+pub fn cracking(samples: &[Sample]) -> Option<(f64, f64)> {
+    let top = samples.iter().fold(0.0f64, |m, s| m.max(s.torque.abs()));
+    let rise = samples.iter().position(|s| s.torque.abs() > 0.3 * top)?;
+    let (mut sxy, mut sxx) = (0.0, 0.0);
+    for s in &samples[..rise] {
+        if s.torque.abs() >= 0.1 * top {
+            sxy += s.twist * s.torque;
+            sxx += s.twist * s.twist;
+        }
+    }
+    if !(sxx > 0.0) {
+        return None;
+    }
+    let k0 = sxy / sxx;
+    samples[rise..]
+        .iter()
+        .find(|s| (s.torque / s.twist).abs() < 0.9 * k0.abs())
+        .map(|s| (k0, s.torque))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -367,5 +396,32 @@ mod tests {
         let k = secant_stiffness(&s, 0.1, 0.5).expect("samples");
         assert!((k - 2e7).abs() < 1e-6);
         assert!(secant_stiffness(&[], 0.1, 0.5).is_none());
+    }
+
+    #[test]
+    fn cracking_is_where_the_secant_falls_below_the_initial_stiffness() {
+        // Bilinear: 2e7 N m/rad to 1e5 N m at 0.005 rad, then 1e6 N m/rad.
+        // ... and a descending branch through 10-30% of the peak, which
+        // must not enter the initial stiffness.
+        let mut s: Vec<Sample> = (0..=100)
+            .map(|i| {
+                let th = i as f64 * 0.0002;
+                sample(
+                    th,
+                    if th <= 0.005 {
+                        2e7 * th
+                    } else {
+                        1e5 + 1e6 * (th - 0.005)
+                    },
+                )
+            })
+            .collect();
+        s.extend((1..=10).map(|i| sample(0.02 + 0.001 * i as f64, 1.15e5 - 1e4 * i as f64)));
+        let (k0, tc) = cracking(&s).expect("cracks");
+        assert!((k0 - 2e7).abs() < 1e-6);
+        // Secant 1e5 (1 + 10 (th - 0.005)) / th < 1.8e7 first at th = 0.0056.
+        assert!((tc - (1e5 + 1e6 * 0.0006)).abs() < 1e-6, "{tc}");
+        let linear: Vec<Sample> = (0..=10).map(|i| sample(i as f64, 3.0 * i as f64)).collect();
+        assert!(cracking(&linear).is_none());
     }
 }

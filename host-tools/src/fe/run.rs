@@ -73,13 +73,16 @@ pub struct Summary {
     pub time_s: f64,
     /// Worker threads.
     pub threads: usize,
-    /// Initial torsional stiffness, kN m/rad.
+    /// Initial torsional stiffness, kN m/rad: before cracking when the run
+    /// cracks ([`output::cracking`]), else the secant slope between 20% and
+    /// 100% of the largest twist.
     pub initial_stiffness: Option<f64>,
     /// Saint-Venant `GJ/L` of the gross concrete section, kN m/rad.
     pub saint_venant_stiffness: f64,
-    /// Cracking torque, kN m (none while the materials are elastic).
+    /// Cracking torque, kN m ([`output::cracking`]; none without cracking).
     pub cracking_torque: Option<f64>,
-    /// Peak torque, kN m (none while the materials are elastic).
+    /// Peak torque, kN m: the largest torque of a cracked run, if the
+    /// torque later fell at least 1% below it (none otherwise).
     pub peak_torque: Option<f64>,
     /// Largest torque reached, kN m.
     pub max_torque: f64,
@@ -223,6 +226,14 @@ pub fn run<M: SolidMaterial, B: BarMaterial>(
         write_row(&s, &mut files, &mut samples)?;
     }
     let verdict = trace.verdict();
+    let cracking = output::cracking(&samples);
+    let max_torque = samples.iter().fold(0.0f64, |a, x| a.max(x.torque.abs()));
+    let peak_at = samples.iter().position(|x| x.torque.abs() == max_torque);
+    let passed_peak = peak_at.is_some_and(|i| {
+        samples[i + 1..]
+            .iter()
+            .any(|x| x.torque.abs() < 0.99 * max_torque)
+    });
     let failures = verdict.failures();
     let m = &s.model;
     Ok(Summary {
@@ -241,11 +252,14 @@ pub fn run<M: SolidMaterial, B: BarMaterial>(
         steps: s.steps,
         time_s: s.t,
         threads,
-        initial_stiffness: output::secant_stiffness(&samples, 0.2, 1.0).map(|k| k / 1e3),
+        initial_stiffness: match cracking {
+            Some((k0, _)) => Some(k0 / 1e3),
+            None => output::secant_stiffness(&samples, 0.2, 1.0).map(|k| k / 1e3),
+        },
         saint_venant_stiffness: spec.saint_venant_stiffness() / 1e3,
-        cracking_torque: None,
-        peak_torque: None,
-        max_torque: samples.iter().fold(0.0f64, |a, x| a.max(x.torque.abs())) / 1e3,
+        cracking_torque: cracking.map(|(_, t)| t.abs() / 1e3),
+        peak_torque: (cracking.is_some() && passed_peak).then_some(max_torque / 1e3),
+        max_torque: max_torque / 1e3,
         max_ke_ie_ratio: verdict.max_ke_ie_ratio,
         max_hourglass_share: verdict.max_hourglass_share,
         max_energy_imbalance: verdict.max_imbalance,

@@ -18,12 +18,14 @@
 //! [assumed]      # "key" = "why and from where"
 //! ```
 
+use super::concrete::{ConcreteDamagedPlasticity, ConcreteParams};
 use super::explicit::{dof, Control};
 use super::history::{History, Interpolation};
 use super::material::{ElasticBar, Isotropic};
 use super::mesh::{Mesh, Section};
 use super::model::Settings;
 use super::rebar::{self, BarSet};
+use super::steel::{HardeningSteel, HARDENING_RATIO};
 use serde::Deserialize;
 use std::collections::BTreeMap;
 use std::f64::consts::PI;
@@ -514,6 +516,29 @@ impl Specimen {
             density: self.steel.density_kg_m3,
         };
         vec![s, s]
+    }
+
+    /// Concrete damaged plasticity of thesis 2.2.1 with this concrete's
+    /// strength and elastic properties.
+    pub fn concrete_damaged(&self) -> ConcreteDamagedPlasticity {
+        let params = ConcreteParams::thesis(self.concrete(), self.concrete.fc_mpa * 1e6);
+        ConcreteDamagedPlasticity::new(params)
+    }
+
+    /// Yielding steel of thesis 2.2.2, one per bar set (longitudinal,
+    /// transverse), with the yield strengths of the file (Table 1.1).
+    pub fn steel_yielding(&self) -> Vec<HardeningSteel> {
+        let e = self.steel.elastic_modulus_mpa * 1e6;
+        let bar = |fy_mpa: f64| HardeningSteel {
+            e,
+            fy: fy_mpa * 1e6,
+            hardening: HARDENING_RATIO * e,
+            density: self.steel.density_kg_m3,
+        };
+        vec![
+            bar(self.longitudinal.yield_mpa),
+            bar(self.transverse.yield_mpa),
+        ]
     }
 
     /// The mesh at `element_size_mm`.
