@@ -35,3 +35,8 @@ pub mod table;
 
 pub use element::{Element, Response, StepError};
 pub use scalar::{Fixed, Scalar};
+
+/// The README's examples, compiled and run as doctests.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+pub struct ReadmeDoctests;
