@@ -69,6 +69,17 @@ pub enum Command {
     Fe(fe::FeArgs),
 }
 
+/// Where a verb writes its CSV: the file `path` (created), or standard output.
+fn output(path: Option<&std::path::Path>) -> anyhow::Result<Box<dyn std::io::Write>> {
+    use anyhow::Context;
+    Ok(match path {
+        Some(p) => Box::new(
+            std::fs::File::create(p).with_context(|| format!("{}: cannot create", p.display()))?,
+        ),
+        None => Box::new(std::io::stdout().lock()),
+    })
+}
+
 /// Runs a parsed command line.
 pub fn run(cli: Cli) -> anyhow::Result<()> {
     match cli.command {

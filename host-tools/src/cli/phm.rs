@@ -42,15 +42,6 @@ fn channel(record: &Record, channel: Channel, unit: Unit) -> Result<Vec<f64>> {
     Ok(s.values.iter().map(|v| unit.from_canonical(*v)).collect())
 }
 
-fn create(path: Option<&Path>) -> Result<Box<dyn Write>> {
-    Ok(match path {
-        Some(p) => Box::new(
-            std::fs::File::create(p).with_context(|| format!("{}: cannot create", p.display()))?,
-        ),
-        None => Box::new(std::io::stdout().lock()),
-    })
-}
-
 /// Runs `hyst simulate --model phm-torsion`.
 pub fn simulate(args: &SimulateArgs) -> Result<()> {
     let file = PhmFile::read(&args.params)?;
@@ -86,10 +77,10 @@ pub fn simulate(args: &SimulateArgs) -> Result<()> {
         });
         writeln!(std::io::stdout().lock(), "{}", serde_json::to_string(&obj)?)?;
         if let Some(p) = &args.out {
-            data::write_columns(create(Some(p))?, &[], &columns)?;
+            data::write_columns(super::output(Some(p))?, &[], &columns)?;
         }
     } else {
-        data::write_columns(create(args.out.as_deref())?, &[], &columns)?;
+        data::write_columns(super::output(args.out.as_deref())?, &[], &columns)?;
     }
     if run.forgotten > 0 {
         eprintln!(

@@ -14,7 +14,6 @@ use anyhow::{anyhow, bail, Context, Result};
 use clap::Args;
 use hysteresis::bwbn::{Bwbn, Control};
 use hysteresis::Element;
-use std::io::Write;
 use std::path::PathBuf;
 
 /// Arguments of `hyst simulate`.
@@ -145,12 +144,7 @@ pub fn run(args: SimulateArgs) -> Result<()> {
         .displacement()
         .ok_or_else(|| anyhow!("{}: no displacement column", args.history.display()))?;
     let sim = simulate(&params, &extras, u)?;
-    let mut out: Box<dyn Write> = match &args.out {
-        Some(p) => Box::new(
-            std::fs::File::create(p).with_context(|| format!("{}: cannot create", p.display()))?,
-        ),
-        None => Box::new(std::io::stdout().lock()),
-    };
+    let mut out = super::output(args.out.as_deref())?;
     data::write_columns(
         &mut out,
         &[],
@@ -222,12 +216,7 @@ fn forced(
         .simulate(&params, &extras, xi, Control::default_for())
         .map_err(|e| anyhow!("{src}: {e}"))?;
     let time: Vec<f64> = (0..force.len()).map(|i| i as f64 * dt).collect();
-    let mut out: Box<dyn Write> = match &args.out {
-        Some(p) => Box::new(
-            std::fs::File::create(p).with_context(|| format!("{}: cannot create", p.display()))?,
-        ),
-        None => Box::new(std::io::stdout().lock()),
-    };
+    let mut out = super::output(args.out.as_deref())?;
     data::write_columns(
         &mut out,
         &[],
