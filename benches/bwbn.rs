@@ -13,23 +13,8 @@ use hysteresis::bwbn::{Bwbn, BwbnParams, Control, EffectKind, EffectSet, ZuRule}
 use hysteresis::Element;
 use std::hint::black_box;
 
-fn history() -> Vec<f64> {
-    let path = concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/../shared/data/opensees-reference/history.csv"
-    );
-    let text = std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{path}: {e}"));
-    text.lines()
-        .skip(1)
-        .filter(|l| !l.trim().is_empty())
-        .map(|l| {
-            l.split(',')
-                .nth(1)
-                .and_then(|v| v.trim().parse().ok())
-                .expect("step,strain rows")
-        })
-        .collect()
-}
+#[path = "../tests/common/mod.rs"]
+mod common;
 
 /// The reference cases' parameters (`cases.json`): k0 6, alpha 0.2, n 1.2,
 /// beta 2, gamma -1, with the degradation of `BoucWen_degrade` and the
@@ -63,7 +48,7 @@ fn params(set: EffectSet) -> BwbnParams<f64> {
 }
 
 fn bench(c: &mut Criterion) {
-    let h = history();
+    let h = common::reference_history();
     let pinching = EffectSet::NONE.with(EffectKind::Pinching);
     let cases = [
         ("bw", EffectSet::NONE),

@@ -10,23 +10,8 @@ use hysteresis::phm::{Coefficients, Phm, PhmParams};
 use hysteresis::{Element, Fixed, Scalar};
 use std::hint::black_box;
 
-fn history() -> Vec<f64> {
-    let path = concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/../shared/data/opensees-reference/history.csv"
-    );
-    let text = std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{path}: {e}"));
-    text.lines()
-        .skip(1)
-        .filter(|l| !l.trim().is_empty())
-        .map(|l| {
-            l.split(',')
-                .nth(1)
-                .and_then(|v| v.trim().parse().ok())
-                .expect("step,strain rows")
-        })
-        .collect()
-}
+#[path = "../tests/common/mod.rs"]
+mod common;
 
 fn bench_arithmetic<S: Scalar>(c: &mut Criterion, h: &[f64]) {
     let p = |x: f64, y: f64| [S::from_f64(x), S::from_f64(y)];
@@ -58,7 +43,7 @@ fn bench_arithmetic<S: Scalar>(c: &mut Criterion, h: &[f64]) {
 }
 
 fn benches(c: &mut Criterion) {
-    let h = history();
+    let h = common::reference_history();
     bench_arithmetic::<f64>(c, &h);
     bench_arithmetic::<f32>(c, &h);
     bench_arithmetic::<Fixed>(c, &h);
