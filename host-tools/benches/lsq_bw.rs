@@ -6,50 +6,15 @@
 //!     cargo bench -p hysteresis-host --bench lsq_bw
 
 use criterion::{criterion_group, criterion_main, Criterion};
-use hyst::fit::experiment::{Drive, Experiment};
 use hyst::fit::lsq::{self, Options};
 use hyst::fit::problem::Problem;
 use hyst::model::ModelSpec;
-use hysteresis::bwbn::{BoucWen, BwbnParams, Control, Method, Sdof};
 use std::collections::BTreeMap;
 use std::hint::black_box;
 
-const MASS: f64 = 5e-4; // 500 kg in kN s^2 / mm
-const TRUTH: [(&str, f64); 5] = [
-    ("alpha", 0.2),
-    ("beta", 2.0),
-    ("gamma", -1.0),
-    ("xi", 0.05),
-    ("n", 1.2),
-];
-
-fn record() -> Experiment {
-    let dt = 0.01;
-    let force: Vec<f64> = (0..=1000)
-        .map(|i| {
-            let t = i as f64 * dt;
-            t * (2.0 * std::f64::consts::PI * t).sin()
-        })
-        .collect();
-    let base = BoucWen::new(6.0, 0.2, 1.2, 2.0, -1.0).expect("valid truth");
-    let tight = Control {
-        method: Method::Dp54,
-        tol: 1e-11,
-        max_substeps: 5000,
-    };
-    let mut osc = Sdof::from_physical(BwbnParams::plain(base), MASS, 0.05)
-        .expect("valid truth")
-        .with_control(tight);
-    let mut u = vec![0.0];
-    for f in &force[1..] {
-        u.push(osc.step(dt, f / MASS).expect("the truth simulates").u);
-    }
-    Experiment {
-        input: force,
-        output: u,
-        drive: Drive::Force { dt, mass: MASS },
-    }
-}
+#[path = "../tests/support/thesis_bw.rs"]
+mod thesis_bw;
+use thesis_bw::{record, TRUTH};
 
 fn fit(c: &mut Criterion) {
     let p = Problem::new(ModelSpec::BW, record(), &[("k0".into(), 6.0)]).expect("a problem");
