@@ -31,37 +31,24 @@ fn forcing(t: f64) -> f64 {
     t * (2.0 * std::f64::consts::PI * t).sin()
 }
 
-/// The displacement samples after t = 0 (5,000 of them).
+/// The displacement samples after t = 0 (5,000 of them), read with the
+/// project's reader; the time column must be the 2 ms grid from 0.
 fn record() -> Vec<f64> {
     let path = concat!(
         env!("CARGO_MANIFEST_DIR"),
         "/../benches/baselines/bw_synthetic.csv"
     );
-    let text = std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{path}: {e}"));
-    let rows: Vec<Vec<f64>> = text
-        .lines()
-        .filter(|l| !l.starts_with('#'))
-        .skip(1)
-        .enumerate()
-        .map(|(i, l)| {
-            l.split(',')
-                .map(|v| {
-                    v.trim()
-                        .parse()
-                        .unwrap_or_else(|_| panic!("{path}: data row {}: not a number", i + 1))
-                })
-                .collect()
-        })
-        .collect();
-    for (i, r) in rows.iter().enumerate() {
+    let record = hyst::data::read(path, &Default::default()).unwrap_or_else(|e| panic!("{e}"));
+    let time = record.time().expect("a time column");
+    for (i, t) in time.iter().enumerate() {
         assert!(
-            (r[0] - i as f64 * DT).abs() < 1e-9,
-            "{path}: data row {} is not at t = {} s",
+            (t - i as f64 * DT).abs() < 1e-9,
+            "{path}: sample {} is not at t = {} s",
             i + 1,
             i as f64 * DT
         );
     }
-    rows[1..].iter().map(|r| r[2]).collect()
+    record.displacement().expect("a displacement column")[1..].to_vec()
 }
 
 struct BwIdentification {
