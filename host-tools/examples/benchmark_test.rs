@@ -18,6 +18,11 @@
 //! The benchmark's true parameters go through the same path as a reference:
 //! what this discretisation alone costs.
 
+// The band-limited interpolation the root crate's test of the true model uses.
+#[path = "../../tests/common/mod.rs"]
+mod common;
+
+use common::interpolate_periodic;
 use hyst::fit::experiment::{Drive, Experiment};
 use hyst::model::{Extras, ParamFile};
 use hysteresis::bwbn::{BoucWen, BwbnParams, Control};
@@ -86,71 +91,6 @@ fn rmse_m(
     let sim = pred.output[m * warmup..].iter().step_by(factor);
     let se: f64 = sim.zip(y).map(|(a, b)| (a - b).powi(2)).sum();
     Ok((se / n as f64).sqrt() * 1e-3)
-}
-
-/// In-place radix-2 complex FFT (`inverse` scales by 1/n). Length must be a
-/// power of two. Used to interpolate band-limited periodic test signals.
-fn fft(re: &mut [f64], im: &mut [f64], inverse: bool) {
-    let n = re.len();
-    assert!(n.is_power_of_two() && im.len() == n);
-    let mut j = 0;
-    for i in 1..n {
-        let mut bit = n >> 1;
-        while j & bit != 0 {
-            j ^= bit;
-            bit >>= 1;
-        }
-        j |= bit;
-        if i < j {
-            re.swap(i, j);
-            im.swap(i, j);
-        }
-    }
-    let sign = if inverse { 1.0 } else { -1.0 };
-    let mut len = 2;
-    while len <= n {
-        let ang = sign * 2.0 * std::f64::consts::PI / len as f64;
-        for start in (0..n).step_by(len) {
-            for k in 0..len / 2 {
-                let (s, c) = (ang * k as f64).sin_cos();
-                let (a, b) = (start + k, start + k + len / 2);
-                let (tr, ti) = (re[b] * c - im[b] * s, re[b] * s + im[b] * c);
-                re[b] = re[a] - tr;
-                im[b] = im[a] - ti;
-                re[a] += tr;
-                im[a] += ti;
-            }
-        }
-        len <<= 1;
-    }
-    if inverse {
-        for v in re.iter_mut().chain(im.iter_mut()) {
-            *v /= n as f64;
-        }
-    }
-}
-
-/// Band-limited interpolation of one period of a periodic real signal by an
-/// integer factor (zero-padding its spectrum).
-fn interpolate_periodic(x: &[f64], factor: usize) -> Vec<f64> {
-    let n = x.len();
-    let m = n * factor;
-    let (mut re, mut im) = (x.to_vec(), vec![0.0; n]);
-    fft(&mut re, &mut im, false);
-    let (mut zr, mut zi) = (vec![0.0; m], vec![0.0; m]);
-    for k in 0..n / 2 {
-        zr[k] = re[k];
-        zi[k] = im[k];
-        if k > 0 {
-            zr[m - k] = re[n - k];
-            zi[m - k] = im[n - k];
-        }
-    }
-    // split the Nyquist bin between +n/2 and -n/2
-    zr[n / 2] = re[n / 2] / 2.0;
-    zr[m - n / 2] = re[n / 2] / 2.0;
-    fft(&mut zr, &mut zi, true);
-    zr.iter().map(|v| v * factor as f64).collect()
 }
 
 fn main() {

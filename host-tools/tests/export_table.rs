@@ -3,27 +3,11 @@
 //! C program computes the same CRC-32), the precision report, and the typed
 //! errors of `table check` with a non-zero exit.
 
-use std::path::PathBuf;
-use std::process::{Command, Output};
+#[path = "support/cli.rs"]
+mod cli;
 
-fn hyst(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_hyst"))
-        .args(args)
-        .output()
-        .expect("hyst runs")
-}
-
-fn tmp(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("hyst-export-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    dir.join(name)
-}
-
-fn write(name: &str, text: &str) -> String {
-    let p = tmp(name);
-    std::fs::write(&p, text).unwrap();
-    p.to_str().unwrap().to_string()
-}
+use cli::{hyst, stderr, tmp, write};
+use std::process::Command;
 
 const ALL_FOUR: &str = r#"{"model": "bwbn", "k0": 6, "alpha": 0.2, "n": 1.2, "beta": 2, "gamma": -1,
  "delta_A": 2e-4, "delta_nu": 5e-4, "delta_eta": 5e-4, "zeta0": 0.9, "p": 0.01, "q": 0.1,
@@ -42,10 +26,6 @@ fn hex_bytes(text: &str) -> Vec<u8> {
         .filter(|w| w.len() == 2)
         .map(|w| u8::from_str_radix(w, 16).unwrap())
         .collect()
-}
-
-fn stderr(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).into_owned()
 }
 
 #[test]

@@ -4,9 +4,11 @@
 //! true parameters, no noise), and `hyst simulate` with the fit file predicts
 //! the displacement again, to the error the fit reported.
 
+#[path = "support/cli.rs"]
+mod cli;
+
+use cli::{err, hyst, ok, tmp};
 use serde_json::Value;
-use std::path::PathBuf;
-use std::process::{Command, Output};
 
 const RECORD: &str = concat!(
     env!("CARGO_MANIFEST_DIR"),
@@ -20,32 +22,12 @@ const TRUTH: [(&str, f64); 5] = [
     ("n", 1.2),
 ];
 
-fn hyst(args: &[&str]) -> Output {
-    let o = Command::new(env!("CARGO_BIN_EXE_hyst"))
-        .args(args)
-        .output()
-        .expect("hyst runs");
-    assert!(
-        o.status.success(),
-        "hyst {args:?}: {}",
-        String::from_utf8_lossy(&o.stderr)
-    );
-    o
-}
-
-fn tmp(name: &str) -> String {
-    let dir = std::env::temp_dir().join(format!("hyst-forced-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    let p: PathBuf = dir.join(name);
-    p.to_str().unwrap().to_string()
-}
-
 #[test]
 fn fit_with_mass_then_simulate_the_fit() {
-    let fit = tmp("fit.json");
-    let out = hyst(&[
+    let fit = tmp("fit.json").display().to_string();
+    let out = ok(hyst(&[
         "fit", RECORD, "--model", "bw", "--mass", "500", "--fix", "k0=6", "--out", &fit, "--json",
-    ]);
+    ]));
     let summary: Value = serde_json::from_slice(&out.stdout).unwrap();
     let file: Value = serde_json::from_str(&std::fs::read_to_string(&fit).unwrap()).unwrap();
     // The record is RK4 at 2 ms, within 1.95e-4 mm of the converged motion
@@ -62,8 +44,8 @@ fn fit_with_mass_then_simulate_the_fit() {
     assert!(nrmse < 1e-3, "nrmse {nrmse}");
 
     // The fit file selects the force drive and the mass by itself.
-    let csv = tmp("sim.csv");
-    let sim = hyst(&["simulate", RECORD, "--params", &fit, "--out", &csv]);
+    let csv = tmp("sim.csv").display().to_string();
+    let sim = ok(hyst(&["simulate", RECORD, "--params", &fit, "--out", &csv]));
     let text = std::fs::read_to_string(&csv).unwrap();
     let mut lines = text.lines();
     assert_eq!(lines.next(), Some("time,force,displacement"));
@@ -106,11 +88,9 @@ fn a_force_record_without_a_mass_is_refused_with_the_remedy() {
         r#"{"model": "bw", "k0": 6, "alpha": 0.2, "n": 1.2, "beta": 2, "gamma": -1, "xi": 0.05}"#,
     )
     .unwrap();
-    let o = Command::new(env!("CARGO_BIN_EXE_hyst"))
-        .args(["simulate", RECORD, "--params", &params, "--mass", "0"])
-        .output()
-        .unwrap();
-    assert!(!o.status.success());
-    let msg = String::from_utf8_lossy(&o.stderr);
+    let params = params.display().to_string();
+    let msg = err(hyst(&[
+        "simulate", RECORD, "--params", &params, "--mass", "0",
+    ]));
     assert!(msg.contains("positive number of kg"), "{msg}");
 }

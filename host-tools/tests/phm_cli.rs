@@ -2,44 +2,13 @@
 //! them: a twist history through a PHM file and back, a fit that recovers the
 //! PHM that made a noisy record, and the errors on bad input.
 
+#[path = "support/cli.rs"]
+mod cli;
+
+use cli::{err, hyst, ok, tmp, write};
 use hyst::data::{read, ReadOptions};
 use hyst::model::{simulate_phm, PhmFile};
 use serde_json::Value;
-use std::path::PathBuf;
-use std::process::{Command, Output};
-
-fn hyst(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_hyst"))
-        .args(args)
-        .output()
-        .expect("hyst runs")
-}
-
-fn tmp(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("hyst-phm-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    dir.join(name)
-}
-
-fn write(name: &str, text: &str) -> String {
-    let p = tmp(name);
-    std::fs::write(&p, text).unwrap();
-    p.to_str().unwrap().to_string()
-}
-
-fn stderr(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).into_owned()
-}
-
-fn ok(o: Output) -> Output {
-    assert!(o.status.success(), "{}", stderr(&o));
-    o
-}
-
-fn err(o: Output) -> String {
-    assert!(!o.status.success(), "expected a failure");
-    stderr(&o)
-}
 
 /// An asymmetric column; yield twists between the amplitudes of
 /// [`history`], so no fitted yield twist sits on the switch of eqs 1-3.
