@@ -12,10 +12,13 @@
 //!   central-difference solver with the rigid top.
 //! * [`quasi_static`], [`output`], [`run`]: energy checks, CSV and VTK
 //!   output, a whole analysis.
+//! * [`backbone`]: the PHM primary curve (thesis Fig. 5.2) idealised from
+//!   the computed torque-twist curve.
 // Negated comparisons treat NaN as a failure (`!(x > 0.0)` is true for NaN),
 // as in the core crate. Kernels index several arrays with one index, which
 // reads like the equations; iterators would hide that.
 #![allow(clippy::neg_cmp_op_on_partial_ord, clippy::needless_range_loop)]
+pub mod backbone;
 #[cfg(test)]
 mod checks;
 pub mod concrete;
