@@ -170,6 +170,28 @@ pub fn resolve_stations<M: SolidMaterial, B: BarMaterial>(
         .collect()
 }
 
+/// The largest axial strain of the trusses of each named bar set (`None`
+/// for a set the model does not have), for the strains against torque of
+/// thesis Fig. 2.2.
+pub fn largest_bar_strains<M: SolidMaterial, B: BarMaterial>(
+    s: &Solver<M, B>,
+    sets: &[&str],
+) -> Vec<Option<f64>> {
+    let m = &s.model;
+    sets.iter()
+        .map(|name| {
+            let set = m.bar_names.iter().position(|n| n == name)?;
+            m.embedding
+                .trusses
+                .iter()
+                .zip(&m.truss_state)
+                .filter(|(t, _)| t.set as usize == set)
+                .map(|(_, st)| st.strain)
+                .reduce(f64::max)
+        })
+        .collect()
+}
+
 fn write_atomically(
     path: &Path,
     body: impl FnOnce(&mut BufWriter<File>) -> std::io::Result<()>,
