@@ -128,9 +128,14 @@ fn write_backbone(
         .collect();
     let primary = backbone::idealise(&curve).with_context(|| {
         format!(
-            "--backbone {}: no PHM primary curve from {} (the other outputs are written)",
+            "--backbone {}: no PHM primary curve from {}{}",
             path.display(),
-            args.specimen.display()
+            args.specimen.display(),
+            if args.out.is_some() {
+                " (the other outputs are written)"
+            } else {
+                ""
+            }
         )
     })?;
     let source = serde_json::json!({
