@@ -1,9 +1,13 @@
 //! `hyst fe SPECIMEN.toml`: the explicit finite-element analysis of an RC
 //! column under axial load and twist (thesis chapter 2).
 
+use crate::fe::backbone::{self, PrimaryCurve};
 use crate::fe::material::Elastic;
+use crate::fe::output;
 use crate::fe::run::{run, Progress, RunOptions, Summary};
+use crate::fe::section::SHEAR_FLOW_SHARE;
 use crate::fe::specimen::Specimen;
+use anyhow::Context;
 use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
 use std::path::PathBuf;
@@ -15,9 +19,16 @@ use std::sync::Arc;
 pub struct FeArgs {
     /// Specimen file (TOML), e.g. `specimens/tp-91.toml`.
     pub specimen: PathBuf,
-    /// Directory for `torque_twist.csv`, `rebar_strains.csv` and VTK files.
+    /// Directory for `torque_twist.csv`, `rebar_strains.csv`,
+    /// `section_shear.csv`, `section_shear.svg` and VTK files.
     #[arg(long)]
     pub out: Option<PathBuf>,
+    /// Write the PHM primary curve idealised from the computed torque-twist
+    /// curve (cracking, yield, peak, deterioration; thesis Fig. 5.2) to
+    /// this file, in the format `hyst simulate --model phm-torsion --params`
+    /// reads.
+    #[arg(long, value_name = "FILE")]
+    pub backbone: Option<PathBuf>,
     /// Print the summary as one JSON object.
     #[arg(long)]
     pub json: bool,
@@ -75,10 +86,24 @@ pub fn run_fe(args: FeArgs) -> anyhow::Result<()> {
         )?
     };
     bar.finish_and_clear();
+    let primary = args
+        .backbone
+        .as_ref()
+        .map(|path| write_backbone(&args, &summary, path));
     if args.json {
-        println!("{}", serde_json::to_string_pretty(&summary)?);
+        let mut v = serde_json::to_value(&summary)?;
+        if let Some(Ok(curve)) = &primary {
+            v["primary_curve"] = serde_json::to_value(curve)?;
+        }
+        println!("{}", serde_json::to_string_pretty(&v)?);
     } else {
         print_summary(&summary);
+        if let (Some(Ok(curve)), Some(path)) = (&primary, &args.backbone) {
+            print_primary(curve, path);
+        }
+    }
+    if let Some(Err(e)) = primary {
+        return Err(e);
     }
     if summary.interrupted {
         anyhow::bail!(
@@ -88,6 +113,60 @@ pub fn run_fe(args: FeArgs) -> anyhow::Result<()> {
         );
     }
     Ok(())
+}
+
+/// Idealises the run's torque-twist curve (in deg and kN m) and writes the
+/// PHM file.
+fn write_backbone(
+    args: &FeArgs,
+    summary: &Summary,
+    path: &std::path::Path,
+) -> anyhow::Result<PrimaryCurve> {
+    let curve: Vec<[f64; 2]> = output::torque_twist(&summary.samples)
+        .iter()
+        .map(|&[x, t]| [x.to_degrees(), t / 1e3])
+        .collect();
+    let primary = backbone::idealise(&curve).with_context(|| {
+        format!(
+            "--backbone {}: no PHM primary curve from {}{}",
+            path.display(),
+            args.specimen.display(),
+            if args.out.is_some() {
+                " (the other outputs are written)"
+            } else {
+                ""
+            }
+        )
+    })?;
+    let source = serde_json::json!({
+        "method": "idealised from hyst fe (docs/fe.md, PHM primary curve)",
+        "specimen": args.specimen.display().to_string(),
+        "materials": summary.materials,
+        "element_size_mm": summary.element_size_mm,
+        "interrupted": summary.interrupted,
+        "quasi_static": summary.quasi_static,
+        "initial_stiffness_kNm_per_deg": primary.initial_stiffness,
+        "coefficients": "the thesis' (ch. 5): a monotonic analysis does not give them",
+    });
+    let file = primary.phm_file(source)?;
+    std::fs::write(path, serde_json::to_string_pretty(&file)? + "\n")
+        .with_context(|| format!("--backbone {}: cannot write", path.display()))?;
+    Ok(primary)
+}
+
+fn print_primary(c: &PrimaryCurve, path: &std::path::Path) {
+    println!(
+        "  PHM primary curve (deg, kN m), written to {}:",
+        path.display()
+    );
+    for (name, p) in [
+        ("cracking", c.cracking),
+        ("yield", c.yield_point),
+        ("peak", c.peak),
+        ("deterioration", c.deterioration),
+    ] {
+        println!("    {name:<13} ({:.5}, {:.2})", p[0], p[1]);
+    }
 }
 
 fn print_summary(s: &Summary) {
@@ -125,6 +204,27 @@ fn print_summary(s: &Summary) {
         println!("  peak torque {t:.2} kN m");
     }
     println!("  max torque {:.2} kN m", s.max_torque);
+    for (set, t) in [
+        ("transverse", s.transverse_yield_torque),
+        ("longitudinal", s.longitudinal_yield_torque),
+    ] {
+        match t {
+            Some(t) => println!("  {set} bars first yield at {t:.2} kN m"),
+            None => println!("  {set} bars do not yield"),
+        }
+    }
+    for st in &s.section {
+        println!(
+            "  section at {}: torque {:.2} kN m (section {:.2}), max shear {:.2} MPa, shear-flow thickness ({:.0}% of the torque) {}",
+            st.stage,
+            st.torque_knm,
+            st.section_torque_knm,
+            st.max_shear_mpa,
+            100.0 * SHEAR_FLOW_SHARE,
+            st.shear_flow_thickness_mm
+                .map_or("none".to_string(), |t| format!("{t:.1} mm"))
+        );
+    }
     println!(
         "  KE/IE max {:.4}, hourglass share max {:.4}, energy imbalance max {:.2e}",
         s.max_ke_ie_ratio, s.max_hourglass_share, s.max_energy_imbalance
@@ -137,7 +237,7 @@ fn print_summary(s: &Summary) {
         }
     }
     for o in &s.outputs {
-        if o.extension().is_some_and(|e| e == "csv") {
+        if o.extension().is_some_and(|e| e == "csv" || e == "svg") {
             println!("  wrote {}", o.display());
         }
     }

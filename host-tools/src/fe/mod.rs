@@ -12,10 +12,15 @@
 //!   central-difference solver with the rigid top.
 //! * [`quasi_static`], [`output`], [`run`]: energy checks, CSV and VTK
 //!   output, a whole analysis.
+//! * [`section`]: shear stress across the mid-height section (thesis Figs
+//!   2.9, 2.10) and the shear-flow thickness.
+//! * [`backbone`]: the PHM primary curve (thesis Fig. 5.2) idealised from
+//!   the computed torque-twist curve.
 // Negated comparisons treat NaN as a failure (`!(x > 0.0)` is true for NaN),
 // as in the core crate. Kernels index several arrays with one index, which
 // reads like the equations; iterators would hide that.
 #![allow(clippy::neg_cmp_op_on_partial_ord, clippy::needless_range_loop)]
+pub mod backbone;
 #[cfg(test)]
 mod checks;
 pub mod concrete;
@@ -29,6 +34,7 @@ pub mod output;
 pub mod quasi_static;
 pub mod rebar;
 pub mod run;
+pub mod section;
 pub mod simd;
 pub mod specimen;
 pub mod steel;

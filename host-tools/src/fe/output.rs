@@ -3,6 +3,7 @@
 //! is flushed when written and every VTK file is written under a temporary
 //! name and renamed, so an interrupted run leaves complete files.
 
+use super::backbone;
 use super::explicit::{dof, Solver};
 use super::material::{BarMaterial, SolidMaterial};
 use super::specimen::StationSpec;
@@ -169,6 +170,28 @@ pub fn resolve_stations<M: SolidMaterial, B: BarMaterial>(
         .collect()
 }
 
+/// The largest axial strain of the trusses of each named bar set (`None`
+/// for a set the model does not have), for the strains against torque of
+/// thesis Fig. 2.2.
+pub fn largest_bar_strains<M: SolidMaterial, B: BarMaterial>(
+    s: &Solver<M, B>,
+    sets: &[&str],
+) -> Vec<Option<f64>> {
+    let m = &s.model;
+    sets.iter()
+        .map(|name| {
+            let set = m.bar_names.iter().position(|n| n == name)?;
+            m.embedding
+                .trusses
+                .iter()
+                .zip(&m.truss_state)
+                .filter(|(t, _)| t.set as usize == set)
+                .map(|(_, st)| st.strain)
+                .reduce(f64::max)
+        })
+        .collect()
+}
+
 fn write_atomically(
     path: &Path,
     body: impl FnOnce(&mut BufWriter<File>) -> std::io::Result<()>,
@@ -329,32 +352,25 @@ pub fn secant_stiffness(samples: &[Sample], lo: f64, hi: f64) -> Option<f64> {
 }
 
 /// Initial stiffness and cracking torque of an inelastic run. The initial
-/// stiffness is the least-squares slope through the origin of torque
-/// against twist over the samples whose torque lies between 10% and 30% of
-/// the largest torque, taken before the torque first exceeds 30% (before
-/// cracking, past the start-up of the loading, not on the descending
-/// branch); the cracking torque is the torque of the first later sample
-/// whose secant stiffness `T / theta` is 10% below it. `None` when the
-/// secant never drops that far (an elastic run) or there are too few
-/// samples.
+/// stiffness is [`backbone::initial_stiffness`]: the least-squares slope
+/// through the origin of torque against twist over the samples whose torque
+/// lies between 10% and 30% of the largest torque, taken before the torque
+/// first exceeds 30% (before cracking, past the start-up of the loading,
+/// not on the descending branch); the cracking torque is the torque of the
+/// first later sample whose secant stiffness `T / theta` is 10% below it.
+/// `None` when the secant never drops that far (an elastic run) or there
+/// are too few samples.
 pub fn cracking(samples: &[Sample]) -> Option<(f64, f64)> {
-    let top = samples.iter().fold(0.0f64, |m, s| m.max(s.torque.abs()));
-    let rise = samples.iter().position(|s| s.torque.abs() > 0.3 * top)?;
-    let (mut sxy, mut sxx) = (0.0, 0.0);
-    for s in &samples[..rise] {
-        if s.torque.abs() >= 0.1 * top {
-            sxy += s.twist * s.torque;
-            sxx += s.twist * s.twist;
-        }
-    }
-    if !(sxx > 0.0) {
-        return None;
-    }
-    let k0 = sxy / sxx;
+    let (k0, rise) = backbone::initial_stiffness(&torque_twist(samples))?;
     samples[rise..]
         .iter()
         .find(|s| (s.torque / s.twist).abs() < 0.9 * k0.abs())
         .map(|s| (k0, s.torque))
+}
+
+/// The `[twist, torque]` pairs of the samples.
+pub fn torque_twist(samples: &[Sample]) -> Vec<[f64; 2]> {
+    samples.iter().map(|s| [s.twist, s.torque]).collect()
 }
 
 #[cfg(test)]

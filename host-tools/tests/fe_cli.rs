@@ -1,0 +1,220 @@
+//! `hyst fe` as a user runs it: a coarse, short damaged-plasticity run of
+//! TP-91 whose `--backbone` file `hyst simulate --model phm-torsion` reads,
+//! the section, rebar and VTK outputs of that run, and the refusal of an
+//! elastic run's curve as a primary curve.
+
+use serde_json::Value;
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+fn hyst(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_hyst"))
+        .args(args)
+        .output()
+        .expect("hyst runs")
+}
+
+fn dir(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("hyst-fe-cli-{}-{name}", std::process::id()));
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+fn specimen(name: &str) -> String {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../specimens")
+        .join(name)
+        .to_str()
+        .unwrap()
+        .to_string()
+}
+
+/// The numeric rows of a CSV (after `#` lines and the header) and its
+/// header.
+fn csv(path: &Path) -> (Vec<String>, Vec<Vec<f64>>) {
+    let text = std::fs::read_to_string(path).unwrap();
+    let mut lines = text.lines().filter(|l| !l.starts_with('#'));
+    let header = lines
+        .next()
+        .unwrap()
+        .split(',')
+        .map(str::to_string)
+        .collect();
+    let rows = lines
+        .map(|l| l.split(',').map(|v| v.parse().unwrap()).collect())
+        .collect();
+    (header, rows)
+}
+
+fn column(header: &[String], name: &str) -> usize {
+    header
+        .iter()
+        .position(|h| h == name)
+        .unwrap_or_else(|| panic!("no column {name} in {header:?}"))
+}
+
+#[test]
+fn fe_backbone_feeds_the_phm_and_the_run_writes_section_rebar_and_damage() {
+    // TP-91 at 50 mm (1,728 hexahedra, about 5 s): cracks, peaks and
+    // softens before the end of its twist.
+    let out = dir("tp91");
+    let phm = out.join("tp91-phm.json");
+    let o = hyst(&[
+        "fe",
+        &specimen("tp-91.toml"),
+        "--element-size",
+        "50",
+        "--threads",
+        "1",
+        "--out",
+        out.to_str().unwrap(),
+        "--backbone",
+        phm.to_str().unwrap(),
+        "--json",
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let summary: Value = serde_json::from_slice(&o.stdout).unwrap();
+    let curve = &summary["primary_curve"];
+    let point = |k: &str| [curve[k][0].as_f64().unwrap(), curve[k][1].as_f64().unwrap()];
+    let (c, y, p, d) = (
+        point("cracking"),
+        point("yield_point"),
+        point("peak"),
+        point("deterioration"),
+    );
+    assert!(c[0] < y[0] && y[0] < p[0] && p[0] < d[0], "{curve}");
+    assert!(c[1] < y[1] && y[1] < p[1] && d[1] < p[1], "{curve}");
+    // The peak is the summary's (kN m), the initial stiffness its
+    // initial stiffness (kN m/rad there, per degree here).
+    let peak = summary["peak_torque"].as_f64().unwrap();
+    assert!((p[1] - peak).abs() < 1e-9 * peak, "{} vs {peak}", p[1]);
+    let k0 = summary["initial_stiffness"].as_f64().unwrap();
+    assert!((c[1] / c[0] - k0.to_radians()).abs() < 1e-6 * k0);
+
+    // The file is a PHM file: a twist history to past the peak and back
+    // runs through `hyst simulate`, and on its first excursion the element
+    // follows its primary curve, so at the peak twist it gives the peak
+    // torque.
+    let mut twist: Vec<f64> = (0..=100).map(|i| p[0] * i as f64 / 100.0).collect();
+    twist.extend((1..=100).map(|i| p[0] * (1.0 - 2.0 * i as f64 / 100.0)));
+    let hist = out.join("history.csv");
+    let mut text = String::from("twist (deg)\n");
+    for x in &twist {
+        text.push_str(&format!("{x}\n"));
+    }
+    std::fs::write(&hist, text).unwrap();
+    let sim = out.join("sim.csv");
+    let o = hyst(&[
+        "simulate",
+        hist.to_str().unwrap(),
+        "--model",
+        "phm-torsion",
+        "--params",
+        phm.to_str().unwrap(),
+        "--out",
+        sim.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let (h, rows) = csv(&sim);
+    let tq = column(&h, "torque (kN m)");
+    assert_eq!(rows.len(), twist.len());
+    assert!(
+        (rows[100][tq] - p[1]).abs() < 1e-6 * p[1],
+        "{}",
+        rows[100][tq]
+    );
+    assert!(rows.iter().all(|r| r[tq].is_finite()));
+
+    // Rebar strains against torque (Fig. 2.2): the largest strain of each
+    // bar set, finite, and growing up to the peak (within 1% of its value
+    // there: the explicit run's inertia leaves a ripple).
+    let (h, rows) = csv(&out.join("rebar_strains.csv"));
+    let t = column(&h, "torque_kNm");
+    let at_peak = rows
+        .iter()
+        .position(|r| (r[t] - peak).abs() < 1e-6 * peak)
+        .expect("the peak row");
+    for name in ["max_longitudinal_strain", "max_transverse_strain"] {
+        let j = column(&h, name);
+        assert!(rows.iter().all(|r| r[j].is_finite()), "{name}");
+        let top = rows[at_peak][j];
+        assert!(top > 1e-4, "{name}: {top}");
+        for w in rows[..=at_peak].windows(2) {
+            assert!(w[1][j] >= w[0][j] - 0.01 * top, "{name}: {w:?}");
+        }
+    }
+
+    // The section at cracking and at the peak (Figs 2.9, 2.10): columns
+    // per stage and a plot with a panel per line of the square.
+    let (h, rows) = csv(&out.join("section_shear.csv"));
+    for name in ["tau_cracking_MPa", "tau_peak_MPa", "tau_end_MPa"] {
+        let j = column(&h, name);
+        assert!(rows.iter().all(|r| r[j].is_finite()), "{name}");
+    }
+    assert_eq!(rows.len(), 64, "an 8 x 8 grid at 50 mm");
+    let svg = std::fs::read_to_string(out.join("section_shear.svg")).unwrap();
+    assert!(svg.contains("towards the middle of a face") && svg.contains("along the diagonal"));
+    let stages: Vec<&str> = summary["section"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|s| s["stage"].as_str().unwrap())
+        .collect();
+    assert_eq!(stages, ["cracking", "peak", "end"]);
+
+    // Tension damage in the VTK files (Fig. 2.13): none at the start,
+    // some by the end, within [0, 0.99] (the damage cap).
+    let damage = |f: &str| -> Vec<f64> {
+        let text = std::fs::read_to_string(out.join(f)).unwrap();
+        let at = text
+            .find("SCALARS tension_damage double 1\nLOOKUP_TABLE default\n")
+            .expect("a tension_damage cell scalar");
+        text[at..]
+            .lines()
+            .skip(2)
+            .take(1728)
+            .map(|v| v.parse().unwrap())
+            .collect()
+    };
+    let first = damage("concrete_0000.vtk");
+    assert!(first.iter().all(|&d| d == 0.0));
+    let last_vtk = (0..)
+        .take_while(|i| out.join(format!("concrete_{i:04}.vtk")).exists())
+        .last()
+        .unwrap();
+    let last = damage(&format!("concrete_{last_vtk:04}.vtk"));
+    assert_eq!(last.len(), 1728);
+    assert!(last.iter().all(|&d| (0.0..=0.99 + 1e-12).contains(&d)));
+    assert!(last.iter().any(|&d| d > 0.5));
+    std::fs::remove_dir_all(&out).ok();
+}
+
+#[test]
+fn an_elastic_run_has_no_primary_curve_and_says_why() {
+    let out = dir("elastic");
+    let phm = out.join("phm.json");
+    let o = hyst(&[
+        "fe",
+        &specimen("tp-92.toml"),
+        "--elastic",
+        "--element-size",
+        "100",
+        "--threads",
+        "1",
+        "--out",
+        out.to_str().unwrap(),
+        "--backbone",
+        phm.to_str().unwrap(),
+    ]);
+    assert!(!o.status.success());
+    let e = String::from_utf8_lossy(&o.stderr);
+    assert!(e.contains("--backbone"), "{e}");
+    assert!(e.contains("never cracks before its peak"), "{e}");
+    assert!(e.contains("expected a fall below 95%"), "{e}");
+    assert!(!phm.exists());
+    // The summary and the other outputs are still there.
+    assert!(String::from_utf8_lossy(&o.stdout).contains("max torque"));
+    assert!(out.join("torque_twist.csv").exists());
+    assert!(out.join("section_shear.csv").exists());
+    std::fs::remove_dir_all(&out).ok();
+}
