@@ -3,19 +3,16 @@
 //! the section, rebar and VTK outputs of that run, and the refusal of an
 //! elastic run's curve as a primary curve.
 
+#[path = "support/cli.rs"]
+mod cli;
+
+use cli::{hyst, tmp};
 use serde_json::Value;
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
 
-fn hyst(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_hyst"))
-        .args(args)
-        .output()
-        .expect("hyst runs")
-}
-
+/// A fresh folder `name` in the scratch folder.
 fn dir(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("hyst-fe-cli-{}-{name}", std::process::id()));
+    let d = tmp(name);
     std::fs::create_dir_all(&d).unwrap();
     d
 }
