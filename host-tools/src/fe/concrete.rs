@@ -576,6 +576,10 @@ impl SolidMaterial for ConcreteDamagedPlasticity {
         }
     }
 
+    fn retained_stiffness(&self, state: &[CdpState; LANES]) -> F4 {
+        F4(std::array::from_fn(|l| 1.0 - state[l].damage))
+    }
+
     fn field_names(&self) -> &'static [&'static str] {
         &["tension_damage", "compression_damage", "damage"]
     }

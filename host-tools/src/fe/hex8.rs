@@ -26,6 +26,16 @@
 //!   exact energy of the shear strain that varies linearly across an
 //!   element in torsion (`u_x = -theta' y z`, whose bilinear part is the
 //!   `eta zeta` hourglass mode); pure bending would need `E h / 48`.
+//!   Since that stiffness stands for the material's own shear stiffness,
+//!   it follows the element's damage (thesis 2.2.1): `k` is scaled by the
+//!   lowest [`SolidMaterial::retained_stiffness`] (`1 - d`) the element
+//!   has had, and the stored forces by its drop, so `Q = (1 - d) k u` for
+//!   the accumulated mode displacement `u`, the secant form of the damaged
+//!   material. Taking the lowest value keeps the scale from rising again
+//!   when cracks close (the stiffness recovery of the material depends on
+//!   the sign of the stress, which varies across an hourglass mode), so
+//!   the hourglass energy cannot be created: with the scale never rising,
+//!   the work on a mode is at least the energy stored in it.
 
 use super::material::{SolidMaterial, Sym6};
 use super::simd::{F4, LANES};
@@ -186,8 +196,11 @@ pub struct HexBatch<S> {
     pub strain: Sym6,
     /// Hourglass generalised forces `Q[i][alpha]`, N.
     pub hg: [[F4; 4]; 3],
-    /// Hourglass stiffness `k`, N/m.
+    /// Hourglass stiffness `k`, N/m, of the undamaged element.
     pub hg_k: F4,
+    /// Fraction of `hg_k` in use: the lowest
+    /// [`SolidMaterial::retained_stiffness`] the element has had.
+    pub hg_keep: F4,
     /// Characteristic length `V / A_max`, m.
     pub char_len: F4,
     /// Linear bulk-viscosity coefficient `b1 rho c_d L_e`, Pa s.
@@ -317,7 +330,10 @@ pub fn step<M: SolidMaterial>(
     // Hourglass control. Gamma_alpha . x_j = 8 h_alpha_j; the mode rates
     // are q_i_alpha = v_i . gamma_alpha = 8 vh_alpha_i - sum_j s_alpha_j L_ij.
     let mut hg_work = F4::ZERO;
-    let kdt = batch.hg_k * dt;
+    let keep = batch.hg_keep.min(mat.retained_stiffness(&batch.state));
+    let relax = keep / batch.hg_keep;
+    batch.hg_keep = keep;
+    let kdt = batch.hg_k * keep * dt;
     let s_al: [V3; 4] = std::array::from_fn(|al| std::array::from_fn(|j| cx[3 + al][j] * 8.0));
     for i in 0..3 {
         for al in 0..4 {
@@ -325,7 +341,7 @@ pub fn step<M: SolidMaterial>(
                 s_al[al][0].mul_add(l[i][0], s_al[al][1].mul_add(l[i][1], s_al[al][2] * l[i][2]));
             let q = vc[i][3 + al].mul_add(F4::splat(8.0), -proj);
             let old = batch.hg[i][al];
-            let upd = kdt.mul_add(q, old);
+            let upd = kdt.mul_add(q, old * relax);
             batch.hg[i][al] = upd;
             hg_work = ((old + upd) * half_dt).mul_add(q, hg_work);
         }
@@ -555,6 +571,7 @@ mod tests {
             strain: [F4::ZERO; 6],
             hg: [[F4::ZERO; 4]; 3],
             hg_k: F4::splat(hg_k),
+            hg_keep: F4::splat(1.0),
             char_len: F4::splat(le),
             bv1: F4::ZERO,
             bv2: F4::ZERO,
@@ -632,6 +649,87 @@ mod tests {
             assert!((f[0][a].0[0] - q * GAMMA[0][a]).abs() < 1e-9);
         }
         assert!((e.hourglass - 0.5 * q * 8.0 * 1e-6).abs() < 1e-12);
+    }
+
+    /// Elastic, with a retained stiffness set by each update: a stand-in
+    /// for a damaging material.
+    struct Softened {
+        elastic: Elastic,
+        keep: f64,
+    }
+
+    impl SolidMaterial for Softened {
+        type State = f64;
+
+        fn initial(&self) -> Isotropic {
+            self.elastic.initial()
+        }
+
+        fn update(&self, state: &mut [f64; LANES], deps: &Sym6, h: F4, stress: &mut Sym6) {
+            self.elastic.update(&mut [(); LANES], deps, h, stress);
+            *state = [self.keep; LANES];
+        }
+
+        fn retained_stiffness(&self, state: &[f64; LANES]) -> F4 {
+            F4(*state)
+        }
+    }
+
+    #[test]
+    fn hourglass_stiffness_follows_the_lowest_retained_stiffness() {
+        // Q = keep k u: the hourglass force is the secant force of the
+        // damaged element, for the accumulated mode displacement u.
+        let mut x = [[0.0; 3]; 8];
+        for a in 0..8 {
+            for i in 0..3 {
+                x[a][i] = 0.5 * XI[a][i];
+            }
+        }
+        let elastic = Elastic::new(Isotropic {
+            e: 30e9,
+            nu: 0.2,
+            density: 2400.0,
+        });
+        let mut bt: HexBatch<f64> = HexBatch {
+            nodes: batch_of(&x, 0.0).nodes,
+            len: LANES,
+            stress: [F4::ZERO; 6],
+            strain: [F4::ZERO; 6],
+            hg: [[F4::ZERO; 4]; 3],
+            hg_k: F4::splat(1e8),
+            hg_keep: F4::splat(1.0),
+            char_len: F4::splat(1.0),
+            bv1: F4::ZERO,
+            bv2: F4::ZERO,
+            mask: F4([1.0, 0.0, 0.0, 0.0]),
+            state: [0.0; LANES],
+        };
+        let dt = 1e-6;
+        let moving: Vec<[f64; 3]> = (0..8).map(|a| [GAMMA[0][a], 0.0, 0.0]).collect();
+        let still = vec![[0.0; 3]; 8];
+        let q1 = 1e8 * dt * 8.0;
+        let mut hourglass = 0.0;
+        // (keep of the material, mode moving?, expected Q / q1)
+        for (keep, v, expected) in [
+            (1.0, &moving, 1.0),
+            (0.5, &still, 0.5),
+            (1.0, &still, 0.5),
+            (0.5, &moving, 1.0),
+            (0.25, &still, 0.5),
+        ] {
+            let mat = Softened { elastic, keep };
+            let (f, e) = step(&mut bt, &mat, &x, v, dt);
+            hourglass += e.hourglass;
+            let q = bt.hg[0][0].0[0];
+            assert!((q - expected * q1).abs() < 1e-12 * q1, "{q} vs {expected}");
+            for a in 0..8 {
+                assert!((f[0][a].0[0] - q * GAMMA[0][a]).abs() < 1e-9);
+            }
+        }
+        assert_eq!(bt.hg_keep.0[0], 0.25);
+        // Work done on the mode: q1 over dt 8, then (q1/2 + q1)/2 over dt 8.
+        let work = 0.5 * q1 * 8.0 * dt + 0.75 * q1 * 8.0 * dt;
+        assert!((hourglass - work).abs() < 1e-12 * work);
     }
 
     #[test]

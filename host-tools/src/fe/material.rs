@@ -70,6 +70,14 @@ pub trait SolidMaterial: Sync {
         stress: &mut Sym6,
     );
 
+    /// Fraction of its initial stiffness each element keeps: `1 - d` for a
+    /// material with scalar damage, 1 (the default) for one without. The
+    /// hourglass stiffness follows it (see [`super::hex8::step`]).
+    #[inline(always)]
+    fn retained_stiffness(&self, _state: &[Self::State; LANES]) -> F4 {
+        F4::splat(1.0)
+    }
+
     /// Names of the scalar history fields written to VTK files.
     fn field_names(&self) -> &'static [&'static str] {
         &[]

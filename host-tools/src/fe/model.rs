@@ -199,6 +199,7 @@ impl<M: SolidMaterial, B: BarMaterial> Model<M, B> {
                 strain: [F4::ZERO; 6],
                 hg: [[F4::ZERO; 4]; 3],
                 hg_k,
+                hg_keep: F4::splat(1.0),
                 char_len: le,
                 bv1,
                 bv2,

@@ -56,6 +56,12 @@ impl F4 {
         F4(r)
     }
 
+    /// Lane-wise minimum.
+    #[inline(always)]
+    pub fn min(self, other: F4) -> F4 {
+        F4(std::array::from_fn(|l| self.0[l].min(other.0[l])))
+    }
+
     /// Sum of the lanes, in lane order.
     #[inline(always)]
     pub fn sum(self) -> f64 {
