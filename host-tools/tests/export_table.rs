@@ -6,7 +6,7 @@
 #[path = "support/cli.rs"]
 mod cli;
 
-use cli::{hyst, stderr, tmp, write};
+use cli::{hyst, ok, stderr, tmp, write};
 use std::process::Command;
 
 const ALL_FOUR: &str = r#"{"model": "bwbn", "k0": 6, "alpha": 0.2, "n": 1.2, "beta": 2, "gamma": -1,
@@ -32,7 +32,7 @@ fn hex_bytes(text: &str) -> Vec<u8> {
 fn export_check_and_renderings_agree() {
     let a = write("a.json", ALL_FOUR);
     let bin = tmp("t.bin");
-    let o = hyst(&[
+    let o = ok(hyst(&[
         "export",
         &a,
         &a,
@@ -43,8 +43,7 @@ fn export_check_and_renderings_agree() {
         "f32",
         "--out",
         bin.to_str().unwrap(),
-    ]);
-    assert!(o.status.success(), "{}", stderr(&o));
+    ]));
     // The report: f32 within the 1e-4 of peak the core's shared tests prove.
     let report = stderr(&o);
     let worst: f64 = report
@@ -59,8 +58,7 @@ fn export_check_and_renderings_agree() {
     assert_eq!(&bytes[..4], b"HYTB");
     assert_eq!(bytes.len(), 36 + 3 * 18 * 4 + 4);
 
-    let o = hyst(&["table", "check", bin.to_str().unwrap()]);
-    assert!(o.status.success());
+    let o = ok(hyst(&["table", "check", bin.to_str().unwrap()]));
     let out = String::from_utf8(o.stdout).unwrap();
     assert!(
         out.contains(
@@ -164,7 +162,7 @@ fn table_check_exits_non_zero_with_the_typed_error() {
 fn phm_tables_and_export_errors() {
     let p = write("phm.json", PHM);
     let bin = tmp("phm.bin");
-    let o = hyst(&[
+    let o = ok(hyst(&[
         "export",
         &p,
         &p,
@@ -174,8 +172,7 @@ fn phm_tables_and_export_errors() {
         "q16",
         "--out",
         bin.to_str().unwrap(),
-    ]);
-    assert!(o.status.success(), "{}", stderr(&o));
+    ]));
     let report = stderr(&o);
     assert!(report.contains("precision of q16"), "{report}");
     let o = hyst(&["table", "check", bin.to_str().unwrap()]);

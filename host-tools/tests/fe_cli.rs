@@ -6,7 +6,7 @@
 #[path = "support/cli.rs"]
 mod cli;
 
-use cli::{hyst, tmp};
+use cli::{err, hyst, ok, tmp};
 use serde_json::Value;
 use std::path::{Path, PathBuf};
 
@@ -56,7 +56,7 @@ fn fe_backbone_feeds_the_phm_and_the_run_writes_section_rebar_and_damage() {
     // softens before the end of its twist.
     let out = dir("tp91");
     let phm = out.join("tp91-phm.json");
-    let o = hyst(&[
+    let o = ok(hyst(&[
         "fe",
         &specimen("tp-91.toml"),
         "--element-size",
@@ -68,8 +68,7 @@ fn fe_backbone_feeds_the_phm_and_the_run_writes_section_rebar_and_damage() {
         "--backbone",
         phm.to_str().unwrap(),
         "--json",
-    ]);
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    ]));
     let summary: Value = serde_json::from_slice(&o.stdout).unwrap();
     let curve = &summary["primary_curve"];
     let point = |k: &str| [curve[k][0].as_f64().unwrap(), curve[k][1].as_f64().unwrap()];
@@ -101,7 +100,7 @@ fn fe_backbone_feeds_the_phm_and_the_run_writes_section_rebar_and_damage() {
     }
     std::fs::write(&hist, text).unwrap();
     let sim = out.join("sim.csv");
-    let o = hyst(&[
+    ok(hyst(&[
         "simulate",
         hist.to_str().unwrap(),
         "--model",
@@ -110,8 +109,7 @@ fn fe_backbone_feeds_the_phm_and_the_run_writes_section_rebar_and_damage() {
         phm.to_str().unwrap(),
         "--out",
         sim.to_str().unwrap(),
-    ]);
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    ]));
     let (h, rows) = csv(&sim);
     let tq = column(&h, "torque (kN m)");
     assert_eq!(rows.len(), twist.len());
@@ -203,14 +201,13 @@ fn an_elastic_run_has_no_primary_curve_and_says_why() {
         "--backbone",
         phm.to_str().unwrap(),
     ]);
-    assert!(!o.status.success());
-    let e = String::from_utf8_lossy(&o.stderr);
+    // The summary and the other outputs are still there.
+    assert!(String::from_utf8_lossy(&o.stdout).contains("max torque"));
+    let e = err(o);
     assert!(e.contains("--backbone"), "{e}");
     assert!(e.contains("never cracks before its peak"), "{e}");
     assert!(e.contains("expected a fall below 95%"), "{e}");
     assert!(!phm.exists());
-    // The summary and the other outputs are still there.
-    assert!(String::from_utf8_lossy(&o.stdout).contains("max torque"));
     assert!(out.join("torque_twist.csv").exists());
     assert!(out.join("section_shear.csv").exists());
     std::fs::remove_dir_all(&out).ok();

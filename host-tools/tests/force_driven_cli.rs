@@ -7,7 +7,7 @@
 #[path = "support/cli.rs"]
 mod cli;
 
-use cli::{err, hyst, ok, tmp};
+use cli::{err, hyst, ok, stderr, tmp};
 use serde_json::Value;
 
 const RECORD: &str = concat!(
@@ -76,7 +76,7 @@ fn fit_with_mass_then_simulate_the_fit() {
         "simulated NRMSE {} vs fitted {nrmse}",
         err / rms
     );
-    let note = String::from_utf8_lossy(&sim.stderr);
+    let note = stderr(&sim);
     assert!(note.contains("displacement RMS error"), "{note}");
 }
 

@@ -6,9 +6,10 @@
 mod cli;
 
 use cli::{err, hyst, ok, tmp, write};
-use hyst::data::{read, ReadOptions};
+use hyst::data::{read, ReadOptions, Record};
 use hyst::model::{simulate_phm, PhmFile};
 use serde_json::Value;
+use std::process::Output;
 
 /// An asymmetric column; yield twists between the amplitudes of
 /// [`history`], so no fitted yield twist sits on the switch of eqs 1-3.
@@ -38,6 +39,18 @@ fn csv(header: &str, rows: impl Iterator<Item = String>) -> String {
         s.push('\n');
     }
     s
+}
+
+/// The CSV `hyst simulate` wrote to stdout, read as a record.
+fn stdout_record(o: Output) -> Record {
+    let text = String::from_utf8(o.stdout).unwrap();
+    hyst::data::read_str(
+        "stdout",
+        &text,
+        hyst::data::Format::Csv,
+        &ReadOptions::default(),
+    )
+    .unwrap()
 }
 
 fn nrmse(y: &[f64], yhat: &[f64]) -> f64 {
@@ -113,13 +126,7 @@ fn simulate_writes_what_the_element_computes() {
         &csv("twist (rad)", x.iter().map(|v| v.to_radians().to_string())),
     );
     let o2 = ok(hyst(&["simulate", &rad, "--params", &p]));
-    let r2 = hyst::data::read_str(
-        "o2.csv",
-        &String::from_utf8(o2.stdout).unwrap(),
-        hyst::data::Format::Csv,
-        &ReadOptions::default(),
-    )
-    .unwrap();
+    let r2 = stdout_record(o2);
     for (a, b) in r2.force().unwrap().iter().zip(&direct.torque) {
         assert!((a - b).abs() < 1e-9);
     }
@@ -187,13 +194,7 @@ fn fit_recovers_the_model_that_made_the_record() {
         "--params",
         fit.to_str().unwrap(),
     ]));
-    let r = hyst::data::read_str(
-        "refit.csv",
-        &String::from_utf8(refit.stdout).unwrap(),
-        hyst::data::Format::Csv,
-        &ReadOptions::default(),
-    )
-    .unwrap();
+    let r = stdout_record(refit);
     assert!((nrmse(&noisy, r.force().unwrap()) - fitted_nrmse).abs() < 1e-9);
 
     let got = PhmFile::read(&fit).unwrap().params;
