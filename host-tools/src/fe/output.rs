@@ -394,19 +394,21 @@ mod tests {
         }
     }
 
+    /// Bilinear: 2e7 N m/rad to 1e5 N m at 0.005 rad, then 1e6 N m/rad.
+    fn bilinear(th: f64) -> f64 {
+        if th <= 0.005 {
+            2e7 * th
+        } else {
+            1e5 + 1e6 * (th - 0.005)
+        }
+    }
+
     #[test]
     fn secant_stiffness_uses_its_window() {
         let s: Vec<Sample> = (0..=10)
             .map(|i| {
                 let th = i as f64 * 0.001;
-                sample(
-                    th,
-                    if i <= 5 {
-                        2e7 * th
-                    } else {
-                        1e5 + 1e6 * (th - 0.005)
-                    },
-                )
+                sample(th, bilinear(th))
             })
             .collect();
         let k = secant_stiffness(&s, 0.1, 0.5).expect("samples");
@@ -416,20 +418,12 @@ mod tests {
 
     #[test]
     fn cracking_is_where_the_secant_falls_below_the_initial_stiffness() {
-        // Bilinear: 2e7 N m/rad to 1e5 N m at 0.005 rad, then 1e6 N m/rad.
-        // ... and a descending branch through 10-30% of the peak, which
-        // must not enter the initial stiffness.
+        // The bilinear curve and a descending branch through 10-30% of the
+        // peak, which must not enter the initial stiffness.
         let mut s: Vec<Sample> = (0..=100)
             .map(|i| {
                 let th = i as f64 * 0.0002;
-                sample(
-                    th,
-                    if th <= 0.005 {
-                        2e7 * th
-                    } else {
-                        1e5 + 1e6 * (th - 0.005)
-                    },
-                )
+                sample(th, bilinear(th))
             })
             .collect();
         s.extend((1..=10).map(|i| sample(0.02 + 0.001 * i as f64, 1.15e5 - 1e4 * i as f64)));
