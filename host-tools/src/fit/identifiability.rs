@@ -8,7 +8,7 @@
 //! same loops), and in the Bouc-Wen benchmark beta, gamma and delta cannot be
 //! separated.
 
-use nalgebra::DMatrix;
+use nalgebra::{DMatrix, DVector};
 use serde::Serialize;
 
 /// A direction the data hardly constrain.
@@ -110,15 +110,22 @@ fn normal_inverse(sv: &[f64], v_t: &DMatrix<f64>, smax: f64) -> DMatrix<f64> {
 /// and residual sum of squares `cost` over `n_obs` observations (infinite
 /// variances in the directions the Jacobian does not see).
 pub fn covariance(jac: &DMatrix<f64>, cost: f64, n_obs: usize) -> DMatrix<f64> {
+    let (sv, v_t, smax) = decompose(jac);
+    normal_inverse(sv.as_slice(), &v_t, smax) * residual_variance(cost, n_obs, jac.ncols())
+}
+
+/// The singular values of `jac`, its `V^T`, and the largest singular value
+/// (at least the smallest positive float, so that ratios to it are finite).
+fn decompose(jac: &DMatrix<f64>) -> (DVector<f64>, DMatrix<f64>, f64) {
     let svd = jac.clone().svd(false, true);
-    let sv = svd.singular_values.as_slice();
-    let v_t = svd.v_t.as_ref().expect("requested V^T");
+    let v_t = svd.v_t.expect("requested V^T");
+    let sv = svd.singular_values;
     let smax = sv
         .iter()
         .cloned()
         .fold(0.0f64, f64::max)
         .max(f64::MIN_POSITIVE);
-    normal_inverse(sv, v_t, smax) * residual_variance(cost, n_obs, jac.ncols())
+    (sv, v_t, smax)
 }
 
 /// Analyses the Jacobian `jac` (rows: residuals, columns: the normalised
@@ -133,18 +140,11 @@ pub fn analyse(
     n_obs: usize,
 ) -> Identifiability {
     let p = names.len();
-    let svd = jac.clone().svd(false, true);
-    let sv = &svd.singular_values;
-    let v_t = svd.v_t.as_ref().expect("requested V^T");
-    let smax = sv
-        .iter()
-        .cloned()
-        .fold(0.0f64, f64::max)
-        .max(f64::MIN_POSITIVE);
+    let (sv, v_t, smax) = decompose(jac);
     let smin = sv.iter().cloned().fold(f64::INFINITY, f64::min);
     let rank = sv.iter().filter(|&&s| s > 1e-6 * smax).count();
     let s2 = residual_variance(cost, n_obs, p);
-    let cov = normal_inverse(sv.as_slice(), v_t, smax);
+    let cov = normal_inverse(sv.as_slice(), &v_t, smax);
     let var: Vec<f64> = (0..p).map(|i| cov[(i, i)] * s2).collect();
     let relative_std: Vec<(String, f64)> = names
         .iter()
