@@ -42,12 +42,24 @@ pub struct FeArgs {
     /// Element size in mm (overrides the specimen file).
     #[arg(long)]
     pub element_size: Option<f64>,
+    /// Replace a value of the specimen file for this run, e.g.
+    /// `--set loading.axial_force_kn=320 --set transverse.spacing_mm=94`
+    /// (repeatable; the file's checks apply to the changed values).
+    #[arg(long = "set", value_name = "KEY=VALUE", value_parser = parse_override)]
+    pub overrides: Vec<(String, String)>,
+}
+
+fn parse_override(s: &str) -> Result<(String, String), String> {
+    let (key, value) = s.split_once('=').ok_or_else(|| {
+        format!("expected KEY=VALUE such as loading.axial_force_kn=320, found `{s}`")
+    })?;
+    Ok((key.trim().to_string(), value.trim().to_string()))
 }
 
 /// Runs the analysis. Ctrl-C stops it after the current step, keeping the
 /// files written so far, and still prints the summary.
 pub fn run_fe(args: FeArgs) -> anyhow::Result<()> {
-    let spec = Specimen::load(&args.specimen)?;
+    let spec = Specimen::load_with(&args.specimen, &args.overrides)?;
     let stop = Arc::new(AtomicBool::new(false));
     let flag = stop.clone();
     ctrlc::set_handler(move || flag.store(true, Ordering::Relaxed))?;
@@ -92,11 +104,22 @@ pub fn run_fe(args: FeArgs) -> anyhow::Result<()> {
         .map(|path| write_backbone(&args, &summary, path));
     if args.json {
         let mut v = serde_json::to_value(&summary)?;
+        if !args.overrides.is_empty() {
+            v["overrides"] = args
+                .overrides
+                .iter()
+                .map(|(k, val)| (k.clone(), serde_json::Value::String(val.clone())))
+                .collect::<serde_json::Map<_, _>>()
+                .into();
+        }
         if let Some(Ok(curve)) = &primary {
             v["primary_curve"] = serde_json::to_value(curve)?;
         }
         println!("{}", serde_json::to_string_pretty(&v)?);
     } else {
+        for (key, value) in &args.overrides {
+            println!("  {key} = {value} (--set)");
+        }
         print_summary(&summary);
         if let (Some(Ok(curve)), Some(path)) = (&primary, &args.backbone) {
             print_primary(curve, path);

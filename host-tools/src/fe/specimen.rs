@@ -266,6 +266,43 @@ fn line_col(src: &str, offset: usize) -> (usize, usize) {
     (line, col)
 }
 
+/// The specimen text with each `key = value` override applied (see
+/// [`Specimen::load_with`]); the comments and layout of the file are kept,
+/// so errors found later still point at the right lines.
+fn apply_overrides(src: &str, overrides: &[(String, String)]) -> Result<String, String> {
+    let mut doc: toml_edit::DocumentMut = src
+        .parse()
+        .map_err(|e: toml_edit::TomlError| e.message().to_string())?;
+    for (key, value) in overrides {
+        let parsed: toml_edit::Value = value
+            .parse()
+            .map_err(|_| format!("--set {key}={value}: `{value}` is not a TOML value"))?;
+        let mut segments: Vec<&str> = key.split('.').collect();
+        let Some(last) = segments.pop().filter(|s| !s.is_empty()) else {
+            return Err(format!(
+                "--set {key}={value}: expected a dotted key such as loading.axial_force_kn"
+            ));
+        };
+        let mut table = doc.as_table_mut();
+        for seg in &segments {
+            table = table
+                .get_mut(seg)
+                .and_then(|item| item.as_table_mut())
+                .ok_or_else(|| format!("--set {key}={value}: the file has no table `{seg}`"))?;
+        }
+        let keep = table
+            .get(last)
+            .and_then(|item| item.as_value())
+            .map(|old| old.decor().clone());
+        let mut new = parsed;
+        if let Some(decor) = keep {
+            *new.decor_mut() = decor;
+        }
+        table.insert(last, toml_edit::Item::Value(new));
+    }
+    Ok(doc.to_string())
+}
+
 /// Byte offset of the value at a dotted key path (numeric segments index
 /// arrays), or of the deepest table on the path that exists.
 fn locate(src: &str, path: &str) -> usize {
@@ -302,6 +339,31 @@ impl Specimen {
             message: format!("cannot read the specimen file: {e}"),
         })?;
         Specimen::parse(&src, path)
+    }
+
+    /// Reads a specimen file with some values replaced, for parametric
+    /// runs: each `(key, value)` sets the dotted key (`loading.axial_force_kn`,
+    /// `transverse.spacing_mm`) to the TOML value before the file is checked.
+    /// A key whose table does not exist, or a value that is not TOML, is an
+    /// error naming the override; the checks of [`Specimen::parse`] then
+    /// apply to the changed file as to any other (unknown keys included).
+    pub fn load_with(path: &Path, overrides: &[(String, String)]) -> Result<Specimen, SpecError> {
+        if overrides.is_empty() {
+            return Specimen::load(path);
+        }
+        let src = std::fs::read_to_string(path).map_err(|e| SpecError {
+            file: path.to_owned(),
+            line: 1,
+            column: 1,
+            message: format!("cannot read the specimen file: {e}"),
+        })?;
+        let changed = apply_overrides(&src, overrides).map_err(|message| SpecError {
+            file: path.to_owned(),
+            line: 1,
+            column: 1,
+            message,
+        })?;
+        Specimen::parse(&changed, path)
     }
 
     /// Parses and checks specimen text; `file` names it in errors.
@@ -718,6 +780,30 @@ mod tests {
                 (p, s)
             })
             .collect()
+    }
+
+    #[test]
+    fn overrides_replace_values_and_keep_the_file_checked() {
+        let file = Path::new(env!("CARGO_MANIFEST_DIR")).join("../specimens/tp-92.toml");
+        let path = file.as_path();
+        let src = std::fs::read_to_string(path).unwrap();
+        let set = |k: &str, v: &str| vec![(k.to_string(), v.to_string())];
+        let changed = apply_overrides(&src, &set("loading.axial_force_kn", "320")).unwrap();
+        assert!(
+            changed.contains("axial_force_kn = 320     # Table 1.1"),
+            "{changed}"
+        );
+        assert_eq!(changed.lines().count(), src.lines().count());
+        let s = Specimen::load_with(path, &set("transverse.spacing_mm", "94.0")).unwrap();
+        assert_eq!(s.transverse.spacing_mm, 94.0);
+        let e = Specimen::load_with(path, &set("transverse.spacing_mm", "-1")).unwrap_err();
+        assert!(e.message.contains("transverse.spacing_mm"), "{e}");
+        let e = Specimen::load_with(path, &set("transverse.spacing", "94")).unwrap_err();
+        assert!(e.message.contains("unknown field"), "{e}");
+        let e = Specimen::load_with(path, &set("hoops.spacing_mm", "94")).unwrap_err();
+        assert!(e.message.contains("no table `hoops`"), "{e}");
+        let e = Specimen::load_with(path, &set("transverse.spacing_mm", "9 4")).unwrap_err();
+        assert!(e.message.contains("not a TOML value"), "{e}");
     }
 
     #[test]
