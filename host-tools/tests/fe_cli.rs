@@ -87,6 +87,41 @@ fn fe_backbone_feeds_the_phm_and_the_run_writes_section_rebar_and_damage() {
     let k0 = summary["initial_stiffness"].as_f64().unwrap();
     assert!((c[1] / c[0] - k0.to_radians()).abs() < 1e-6 * k0);
 
+    // The quasi-static checks up to the peak judge the steps up to the
+    // peak's row of torque_twist.csv: the hourglass share of every sampled
+    // row there (past the window's start, 1% of the run's largest internal
+    // energy) is
+    // within the largest share reported, which is within the whole run's.
+    let to_peak = &summary["checks_to_peak"];
+    let (h, rows) = csv(&out.join("torque_twist.csv"));
+    let (time, tq) = (column(&h, "time_s"), column(&h, "torque_kNm"));
+    let (ie, hg) = (column(&h, "internal_J"), column(&h, "hourglass_J"));
+    let peak_row = rows
+        .iter()
+        .position(|r| (r[tq] - peak).abs() < 1e-6 * peak)
+        .expect("the peak row");
+    let t_peak = to_peak["t_peak"].as_f64().unwrap();
+    assert!((t_peak - rows[peak_row][time]).abs() < 1e-9 * t_peak);
+    let share = to_peak["max_hourglass_share"].as_f64().unwrap();
+    let ie_max = rows.iter().fold(0.0f64, |m, r| m.max(r[ie]));
+    let sampled = rows[..=peak_row]
+        .iter()
+        .filter(|r| r[ie] >= 0.01 * ie_max)
+        .fold(0.0f64, |m, r| m.max(r[hg] / r[ie]));
+    assert!(sampled > 0.0 && sampled <= share, "{sampled} vs {share}");
+    assert!(share <= summary["max_hourglass_share"].as_f64().unwrap());
+    // After the peak the crushed elements deform in hourglass modes: the
+    // share of the sampled rows grows past the largest one before it
+    // (TP-91 at 50 mm: 14.0% up to the peak, 18.6% at the end).
+    let after = rows[peak_row..]
+        .iter()
+        .fold(0.0f64, |m, r| m.max(r[hg] / r[ie]));
+    assert!(after > share, "{after} vs {share}");
+    assert_eq!(
+        to_peak["quasi_static"].as_bool().unwrap(),
+        to_peak["failures"].as_array().unwrap().is_empty()
+    );
+
     // The file is a PHM file: a twist history to past the peak and back
     // runs through `hyst simulate`, and on its first excursion the element
     // follows its primary curve, so at the peak twist it gives the peak

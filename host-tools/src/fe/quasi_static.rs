@@ -8,6 +8,10 @@
 //! * hourglass / internal energy below [`HOURGLASS_LIMIT`];
 //! * energy balance `|W - IE - VD - KE|` below [`BALANCE_LIMIT`] of
 //!   `max(W, IE + VD + KE)`.
+//!
+//! A run that peaks is also judged over the same window up to its peak
+//! torque ([`EnergyTrace::verdict_until`]): the curve up to the peak can be
+//! quasi-static while the collapse after it is not.
 
 use super::explicit::Energies;
 
@@ -37,12 +41,24 @@ impl EnergyTrace {
 
     /// Judges the run so far.
     pub fn verdict(&self) -> Verdict {
+        self.verdict_until(f64::INFINITY)
+    }
+
+    /// Judges the run's window (which starts where the whole run's
+    /// internal energy first reaches [`WINDOW_START`] of its maximum) up to
+    /// and including time `t_end`: a run's checks up to its peak torque,
+    /// before the collapse of crushed concrete, whose hourglass and kinetic
+    /// energies say nothing about the curve up to the peak. Every ratio is
+    /// then at most the whole run's.
+    pub fn verdict_until(&self, t_end: f64) -> Verdict {
         let ie_max = self.e.iter().fold(0.0f64, |m, e| m.max(e.internal()));
         let start = self
             .e
             .iter()
             .position(|e| ie_max > 0.0 && e.internal() >= WINDOW_START * ie_max)
             .unwrap_or(self.e.len());
+        let steps = self.t.partition_point(|&t| t <= t_end);
+        let end = steps.max(start);
         let mut v = Verdict {
             window_start: self.t.get(start).copied().unwrap_or(f64::NAN),
             max_ke_ie_ratio: 0.0,
@@ -50,9 +66,9 @@ impl EnergyTrace {
             max_hourglass_share: 0.0,
             final_hourglass_share: 0.0,
             max_imbalance: 0.0,
-            steps: self.e.len(),
+            steps,
         };
-        for (t, e) in self.t[start..].iter().zip(&self.e[start..]) {
+        for (t, e) in self.t[start..end].iter().zip(&self.e[start..end]) {
             let ie = e.internal();
             let r = e.kinetic / ie;
             if !(r <= v.max_ke_ie_ratio) {
@@ -63,7 +79,7 @@ impl EnergyTrace {
             let scale = e.work.abs().max(ie + e.viscous + e.kinetic);
             v.max_imbalance = v.max_imbalance.max(e.imbalance().abs() / scale);
         }
-        if let Some(e) = self.e.last() {
+        if let Some(e) = self.e[..steps].last() {
             v.final_hourglass_share = e.hourglass / e.internal();
         }
         v
@@ -148,5 +164,30 @@ mod tests {
         bad.push(4.0, e(1.0, 0.1, 0.0, 2.0));
         let f = bad.verdict().failures();
         assert_eq!(f.len(), 3, "{f:?}");
+    }
+
+    #[test]
+    fn a_run_is_judged_up_to_its_peak_in_the_same_window() {
+        let mut tr = EnergyTrace::default();
+        tr.push(0.0, e(0.0, 0.0, 1e-6, 1e-6));
+        tr.push(1.0, e(0.5, 0.01, 0.01, 0.52));
+        tr.push(2.0, e(1.0, 0.02, 0.02, 1.04));
+        // The collapse: hourglass and kinetic energy grow.
+        tr.push(3.0, e(1.0, 0.2, 0.3, 1.5));
+        let whole = tr.verdict();
+        assert_eq!(whole.failures().len(), 2, "{:?}", whole.failures());
+        for t_end in [2.0, 2.5] {
+            let v = tr.verdict_until(t_end);
+            assert_eq!(v.steps, 3);
+            assert!(v.failures().is_empty(), "{:?}", v.failures());
+            assert!((v.max_hourglass_share - 0.02 / 1.02).abs() < 1e-12);
+            assert!((v.final_hourglass_share - 0.02 / 1.02).abs() < 1e-12);
+            assert_eq!(v.window_start, whole.window_start);
+        }
+        assert_eq!(tr.verdict_until(10.0), whole);
+        // Before the window: nothing judged.
+        let early = tr.verdict_until(0.5);
+        assert_eq!(early.max_hourglass_share, 0.0);
+        assert!(early.failures().is_empty());
     }
 }

@@ -108,6 +108,11 @@ pub struct Summary {
     pub quasi_static: bool,
     /// The checks that failed.
     pub failures: Vec<String>,
+    /// The same checks over the run up to the peak torque (none without a
+    /// peak): the curve up to the peak, which thesis Table 2.1 compares,
+    /// can be quasi-static while the collapse of crushed concrete after it
+    /// is not.
+    pub checks_to_peak: Option<PeakChecks>,
     /// Files written.
     pub outputs: Vec<PathBuf>,
     /// Wall-clock time, s.
@@ -117,6 +122,24 @@ pub struct Summary {
     /// The torque-twist record as sampled (`torque_twist.csv`).
     #[serde(skip)]
     pub samples: Vec<Sample>,
+}
+
+/// The quasi-static checks ([`super::quasi_static`]) of a run up to its
+/// peak torque.
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+pub struct PeakChecks {
+    /// Time of the peak, s: the end of the judged window.
+    pub t_peak: f64,
+    /// Largest kinetic / internal energy ratio up to the peak.
+    pub max_ke_ie_ratio: f64,
+    /// Largest hourglass share of the internal energy up to the peak.
+    pub max_hourglass_share: f64,
+    /// Largest relative energy imbalance up to the peak.
+    pub max_energy_imbalance: f64,
+    /// Whether all checks hold up to the peak.
+    pub quasi_static: bool,
+    /// The checks that failed up to the peak.
+    pub failures: Vec<String>,
 }
 
 /// The bar sets whose largest strains `rebar_strains.csv` reports, in its
@@ -310,6 +333,19 @@ pub fn run<M: SolidMaterial, B: BarMaterial>(
             .map(|i| samples[i].torque.abs() / 1e3)
     };
     let failures = verdict.failures();
+    let checks_to_peak = peak_at.filter(|_| peak_torque.is_some()).map(|p| {
+        let t_peak = samples[p].t;
+        let v = trace.verdict_until(t_peak);
+        let failures = v.failures();
+        PeakChecks {
+            t_peak,
+            max_ke_ie_ratio: v.max_ke_ie_ratio,
+            max_hourglass_share: v.max_hourglass_share,
+            max_energy_imbalance: v.max_imbalance,
+            quasi_static: failures.is_empty(),
+            failures,
+        }
+    });
     let m = &s.model;
     Ok(Summary {
         specimen: spec.name.clone(),
@@ -343,6 +379,7 @@ pub fn run<M: SolidMaterial, B: BarMaterial>(
         max_energy_imbalance: verdict.max_imbalance,
         quasi_static: failures.is_empty(),
         failures,
+        checks_to_peak,
         outputs,
         wall_s: wall,
         ns_per_element_step: wall * 1e9 / (s.steps.max(1) as f64 * m.elements() as f64),
