@@ -329,15 +329,20 @@ fn locate(src: &str, path: &str) -> usize {
     at
 }
 
+/// The text of a specimen file, or an error naming it.
+fn read_source(path: &Path) -> Result<String, SpecError> {
+    std::fs::read_to_string(path).map_err(|e| SpecError {
+        file: path.to_owned(),
+        line: 1,
+        column: 1,
+        message: format!("cannot read the specimen file: {e}"),
+    })
+}
+
 impl Specimen {
     /// Reads and checks a specimen file.
     pub fn load(path: &Path) -> Result<Specimen, SpecError> {
-        let src = std::fs::read_to_string(path).map_err(|e| SpecError {
-            file: path.to_owned(),
-            line: 1,
-            column: 1,
-            message: format!("cannot read the specimen file: {e}"),
-        })?;
+        let src = read_source(path)?;
         Specimen::parse(&src, path)
     }
 
@@ -351,12 +356,7 @@ impl Specimen {
         if overrides.is_empty() {
             return Specimen::load(path);
         }
-        let src = std::fs::read_to_string(path).map_err(|e| SpecError {
-            file: path.to_owned(),
-            line: 1,
-            column: 1,
-            message: format!("cannot read the specimen file: {e}"),
-        })?;
+        let src = read_source(path)?;
         let changed = apply_overrides(&src, overrides).map_err(|message| SpecError {
             file: path.to_owned(),
             line: 1,
