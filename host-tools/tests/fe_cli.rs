@@ -87,6 +87,23 @@ fn fe_backbone_feeds_the_phm_and_the_run_writes_section_rebar_and_damage() {
     let k0 = summary["initial_stiffness"].as_f64().unwrap();
     assert!((c[1] / c[0] - k0.to_radians()).abs() < 1e-6 * k0);
 
+    // Against thesis Table 2.1 (TP-91: test cracking 60.7, ultimate 76.6
+    // kN m), in the summary and in the torque-twist figure.
+    let table = &summary["table_2_1"];
+    let cracking = summary["cracking_torque"].as_f64().unwrap();
+    let error = |k: &str| table[k].as_f64().unwrap();
+    assert!((error("cracking_error") - (cracking / 60.7 - 1.0)).abs() < 1e-12);
+    assert!((error("peak_error") - (peak / 76.6 - 1.0)).abs() < 1e-12);
+    let svg = std::fs::read_to_string(out.join("torque_twist.svg")).unwrap();
+    for text in [
+        "test cracking 60.7",
+        "test ultimate 76.6",
+        &format!("peak {peak:.1}"),
+        &format!("cracking {cracking:.1}"),
+    ] {
+        assert!(svg.contains(text), "no '{text}' in torque_twist.svg");
+    }
+
     // The quasi-static checks up to the peak judge the steps up to the
     // peak's row of torque_twist.csv: the hourglass share of every sampled
     // row there (past the window's start, 1% of the run's largest internal

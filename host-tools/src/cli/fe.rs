@@ -228,6 +228,20 @@ fn print_summary(s: &Summary) {
         println!("  peak torque {t:.2} kN m");
     }
     println!("  max torque {:.2} kN m", s.max_torque);
+    if let Some(c) = &s.table_2_1 {
+        let r = &c.reference;
+        let here =
+            |e: Option<f64>| e.map_or("not reached".into(), |e| format!("{:+.1}%", 100.0 * e));
+        println!(
+            "  thesis Table 2.1: cracking, test {:.1} kN m (here {}), thesis FE {:.1}; ultimate, test {:.1} kN m (here {}), thesis FE {:.1}",
+            r.test_cracking_knm,
+            here(c.cracking_error),
+            r.thesis_fe_cracking_knm,
+            r.test_peak_knm,
+            here(c.peak_error),
+            r.thesis_fe_peak_knm
+        );
+    }
     for (set, t) in [
         ("transverse", s.transverse_yield_torque),
         ("longitudinal", s.longitudinal_yield_torque),

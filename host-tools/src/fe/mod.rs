@@ -16,6 +16,8 @@
 //!   2.9, 2.10) and the shear-flow thickness.
 //! * [`backbone`]: the PHM primary curve (thesis Fig. 5.2) idealised from
 //!   the computed torque-twist curve.
+//! * [`torque_twist`]: the computed curve against the torques of thesis
+//!   Table 2.1 (Fig. 2.1), as a figure and as relative errors.
 // Negated comparisons treat NaN as a failure (`!(x > 0.0)` is true for NaN),
 // as in the core crate. Kernels index several arrays with one index, which
 // reads like the equations; iterators would hide that.
@@ -38,3 +40,4 @@ pub mod section;
 pub mod simd;
 pub mod specimen;
 pub mod steel;
+pub mod torque_twist;

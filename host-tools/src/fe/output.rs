@@ -358,14 +358,14 @@ pub fn secant_stiffness(samples: &[Sample], lo: f64, hi: f64) -> Option<f64> {
 /// first exceeds 30% (before cracking, past the start-up of the loading,
 /// not on the descending branch); the cracking torque is the torque of the
 /// first later sample whose secant stiffness `T / theta` is 10% below it.
-/// `None` when the secant never drops that far (an elastic run) or there
-/// are too few samples.
-pub fn cracking(samples: &[Sample]) -> Option<(f64, f64)> {
+/// Returns the initial stiffness and the index of that sample; `None` when
+/// the secant never drops that far (an elastic run) or there are too few
+/// samples.
+pub fn cracking(samples: &[Sample]) -> Option<(f64, usize)> {
     let (k0, rise) = backbone::initial_stiffness(&torque_twist(samples))?;
-    samples[rise..]
-        .iter()
-        .find(|s| (s.torque / s.twist).abs() < 0.9 * k0.abs())
-        .map(|s| (k0, s.torque))
+    (rise..samples.len())
+        .find(|&i| (samples[i].torque / samples[i].twist).abs() < 0.9 * k0.abs())
+        .map(|i| (k0, i))
 }
 
 /// The `[twist, torque]` pairs of the samples.
@@ -427,7 +427,8 @@ mod tests {
             })
             .collect();
         s.extend((1..=10).map(|i| sample(0.02 + 0.001 * i as f64, 1.15e5 - 1e4 * i as f64)));
-        let (k0, tc) = cracking(&s).expect("cracks");
+        let (k0, i) = cracking(&s).expect("cracks");
+        let tc = s[i].torque;
         assert!((k0 - 2e7).abs() < 1e-6);
         // Secant 1e5 (1 + 10 (th - 0.005)) / th < 1.8e7 first at th = 0.0056.
         assert!((tc - (1e5 + 1e6 * 0.0006)).abs() < 1e-6, "{tc}");

@@ -11,6 +11,7 @@ use super::quasi_static::EnergyTrace;
 use super::rebar::embed;
 use super::section::{Cut, Profile, Stage, StageSummary};
 use super::specimen::Specimen;
+use super::torque_twist::{self, Comparison, Marks};
 use anyhow::Context;
 use std::path::PathBuf;
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -113,6 +114,9 @@ pub struct Summary {
     /// can be quasi-static while the collapse of crushed concrete after it
     /// is not.
     pub checks_to_peak: Option<PeakChecks>,
+    /// The cracking and peak torques against thesis Table 2.1, if the
+    /// specimen file gives its values (`[reference.table_2_1]`).
+    pub table_2_1: Option<Comparison>,
     /// Files written.
     pub outputs: Vec<PathBuf>,
     /// Wall-clock time, s.
@@ -333,6 +337,11 @@ pub fn run<M: SolidMaterial, B: BarMaterial>(
             .map(|i| samples[i].torque.abs() / 1e3)
     };
     let failures = verdict.failures();
+    let cracking_torque = cracking.map(|(_, i)| samples[i].torque.abs() / 1e3);
+    let table_2_1 = spec
+        .reference
+        .table_2_1
+        .map(|r| Comparison::new(r, cracking_torque, peak_torque));
     let checks_to_peak = peak_at.filter(|_| peak_torque.is_some()).map(|p| {
         let t_peak = samples[p].t;
         let v = trace.verdict_until(t_peak);
@@ -346,6 +355,22 @@ pub fn run<M: SolidMaterial, B: BarMaterial>(
             failures,
         }
     });
+    if let Some((dir, _, _)) = &files {
+        let marks = Marks {
+            cracking: cracking.map(|(_, i)| i),
+            peak: peak_at.filter(|_| peak_torque.is_some()),
+            fails_after_peak: !failures.is_empty()
+                && checks_to_peak.as_ref().is_some_and(|c| c.quasi_static),
+        };
+        let title = format!(
+            "{}: torque against twist at {} mm elements",
+            spec.name, spec.analysis.element_size_mm
+        );
+        let svg = dir.join("torque_twist.svg");
+        let fig = torque_twist::figure(&title, samples, marks, spec.reference.table_2_1.as_ref())?;
+        std::fs::write(&svg, fig.to_svg()).with_context(|| format!("writing {}", svg.display()))?;
+        outputs.push(svg);
+    }
     let m = &s.model;
     Ok(Summary {
         specimen: spec.name.clone(),
@@ -368,7 +393,7 @@ pub fn run<M: SolidMaterial, B: BarMaterial>(
             None => output::secant_stiffness(samples, 0.2, 1.0).map(|k| k / 1e3),
         },
         saint_venant_stiffness: spec.saint_venant_stiffness() / 1e3,
-        cracking_torque: cracking.map(|(_, t)| t.abs() / 1e3),
+        cracking_torque,
         peak_torque,
         max_torque: max_torque / 1e3,
         section: stages.iter().map(|st| cut.summarise(st)).collect(),
@@ -380,6 +405,7 @@ pub fn run<M: SolidMaterial, B: BarMaterial>(
         quasi_static: failures.is_empty(),
         failures,
         checks_to_peak,
+        table_2_1,
         outputs,
         wall_s: wall,
         ns_per_element_step: wall * 1e9 / (s.steps.max(1) as f64 * m.elements() as f64),

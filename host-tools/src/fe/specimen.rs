@@ -14,7 +14,8 @@
 //! [loading]      # axial_force_kn, axial_ramp_s, twist = [[s, rad], ...], interpolation
 //! [analysis]     # element_size_mm, hourglass_scale, bulk_viscosity, dt_safety, mass_scaling_dt_s, threads
 //! [output]       # samples, vtk_every_s, [[output.rebar_station]]
-//! [reference]    # Table 1.1 ratios, checked against the bar layout
+//! [reference]    # Table 1.1 ratios, checked against the bar layout;
+//!                # [reference.table_2_1]: the torques a run is compared with
 //! [assumed]      # "key" = "why and from where"
 //! ```
 
@@ -194,6 +195,26 @@ pub struct ReferenceSpec {
     pub longitudinal_ratio_pct: f64,
     /// Transverse (volumetric) steel ratio, percent.
     pub transverse_ratio_pct: f64,
+    /// The torques of thesis Table 2.1, which a run is compared with and
+    /// its torque-twist figure shows (optional: a column of one's own has
+    /// none).
+    #[serde(default)]
+    pub table_2_1: Option<TorqueReference>,
+}
+
+/// Cracking and ultimate torques of thesis Table 2.1, kN m: the test's
+/// (Experimental (B)) and the thesis's ABAQUS model's (FE Analysis (A)).
+#[derive(Clone, Copy, Debug, PartialEq, Deserialize, serde::Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct TorqueReference {
+    /// Measured cracking torque.
+    pub test_cracking_knm: f64,
+    /// Measured ultimate (peak) torque.
+    pub test_peak_knm: f64,
+    /// Cracking torque of the thesis's finite-element model.
+    pub thesis_fe_cracking_knm: f64,
+    /// Ultimate torque of the thesis's finite-element model.
+    pub thesis_fe_peak_knm: f64,
 }
 
 /// A specimen file.
@@ -483,6 +504,22 @@ impl Specimen {
             "steel.density_kg_m3",
             "the density in kg/m^3",
         )?;
+        if let Some(t) = &self.reference.table_2_1 {
+            for (v, path) in [
+                (t.test_cracking_knm, "reference.table_2_1.test_cracking_knm"),
+                (t.test_peak_knm, "reference.table_2_1.test_peak_knm"),
+                (
+                    t.thesis_fe_cracking_knm,
+                    "reference.table_2_1.thesis_fe_cracking_knm",
+                ),
+                (
+                    t.thesis_fe_peak_knm,
+                    "reference.table_2_1.thesis_fe_peak_knm",
+                ),
+            ] {
+                pos(v, path, "a torque in kN m")?;
+            }
+        }
         let ld = &self.loading;
         if !(ld.axial_force_kn.is_finite() && ld.axial_force_kn >= 0.0) {
             return Err((
@@ -883,5 +920,38 @@ mod tests {
         let e = Specimen::parse(&typo, Path::new("x.toml")).expect_err("unknown key");
         assert!(e.message.contains("fc_mp"), "{e}");
         assert!(e.line > 1);
+        let bad = src.replacen("test_peak_knm = 76.6", "test_peak_knm = nan", 1);
+        let e = Specimen::parse(&bad, Path::new("x.toml")).expect_err("NaN torque");
+        let line = bad.lines().position(|l| l.contains("= nan")).map(|i| i + 1);
+        assert_eq!(Some(e.line), line, "{e}");
+        assert!(
+            e.message.contains("reference.table_2_1.test_peak_knm"),
+            "{e}"
+        );
+    }
+
+    #[test]
+    fn specimen_files_carry_table_2_1() {
+        // Thesis Table 2.1: test cracking, test ultimate, FE cracking, FE
+        // ultimate (kN m), in the order of `specimens()`.
+        let table = [
+            [60.7, 76.6, 62.9, 82.0],
+            [76.6, 84.4, 58.0, 84.1],
+            [180.9, 281.1, 190.7, 287.7],
+            [184.6, 327.5, 224.1, 338.8],
+            [189.3, 328.0, 212.3, 283.7],
+        ];
+        let files = specimens();
+        assert_eq!(files.len(), table.len());
+        for ((p, s), want) in files.iter().zip(table) {
+            let r = s.reference.table_2_1.expect("a [reference.table_2_1]");
+            let got = [
+                r.test_cracking_knm,
+                r.test_peak_knm,
+                r.thesis_fe_cracking_knm,
+                r.thesis_fe_peak_knm,
+            ];
+            assert_eq!(got, want, "{}", p.display());
+        }
     }
 }
