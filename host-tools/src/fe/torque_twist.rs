@@ -53,10 +53,16 @@ pub fn figure(
 ) -> Result<Figure, Error> {
     let twist: Vec<f64> = samples.iter().map(|s| s.twist).collect();
     let torque: Vec<f64> = samples.iter().map(|s| s.torque / 1e3).collect();
-    let mut panel = Panel::new(
-        Axis::linear("twist", "rad").include_zero(),
-        Axis::linear("torque", "kN m").include_zero(),
-    );
+    // Head room above the highest curve or line, so that the reference
+    // lines' labels stay clear of the shaded band's label at the top.
+    let refs = reference.map_or(0.0, |r| r.test_peak_knm.max(r.thesis_fe_peak_knm));
+    let top = torque.iter().fold(refs, |m, &t| m.max(t));
+    let bottom = torque.iter().fold(0.0f64, |m, &t| m.min(t));
+    let mut y = Axis::linear("torque", "kN m").include_zero();
+    if top > 0.0 && top.is_finite() && bottom.is_finite() {
+        y = y.limits(bottom * 1.05, top * 1.15);
+    }
+    let mut panel = Panel::new(Axis::linear("twist", "rad").include_zero(), y);
     panel.series(Series::line("computed", &twist, &torque)?.width(2.0));
     if let Some(r) = reference {
         panel
