@@ -181,6 +181,18 @@ fn fe_backbone_feeds_the_phm_and_the_run_writes_section_rebar_and_damage() {
         .iter()
         .position(|r| (r[t] - peak).abs() < 1e-6 * peak)
         .expect("the peak row");
+    // The first yield of the hoops (328 MPa / 200 GPa, Table 1.1 and thesis
+    // 2.2.2) is the first row whose largest hoop strain reaches it, and the
+    // summary's peak twist is the peak row's.
+    let (tw, hoop) = (column(&h, "twist_rad"), column(&h, "max_transverse_strain"));
+    let first = rows
+        .iter()
+        .find(|r| r[hoop] >= 328.0 / 200_000.0)
+        .expect("the hoops yield at 50 mm");
+    let yield_twist = summary["transverse_yield_twist"].as_f64().unwrap();
+    assert!((yield_twist - first[tw]).abs() < 1e-9 * yield_twist);
+    let peak_twist = summary["peak_twist"].as_f64().unwrap();
+    assert!((peak_twist - rows[at_peak][tw]).abs() < 1e-9 * peak_twist);
     for name in ["max_longitudinal_strain", "max_transverse_strain"] {
         let j = column(&h, name);
         assert!(rows.iter().all(|r| r[j].is_finite()), "{name}");

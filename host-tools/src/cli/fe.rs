@@ -242,13 +242,28 @@ fn print_summary(s: &Summary) {
             r.thesis_fe_peak_knm
         );
     }
-    for (set, t) in [
-        ("transverse", s.transverse_yield_torque),
-        ("longitudinal", s.longitudinal_yield_torque),
+    for (set, t, twist) in [
+        (
+            "transverse",
+            s.transverse_yield_torque,
+            s.transverse_yield_twist,
+        ),
+        (
+            "longitudinal",
+            s.longitudinal_yield_torque,
+            s.longitudinal_yield_twist,
+        ),
     ] {
-        match t {
-            Some(t) => println!("  {set} bars first yield at {t:.2} kN m"),
-            None => println!("  {set} bars do not yield"),
+        match (t, twist) {
+            (Some(t), Some(th)) => {
+                let when = match s.peak_twist {
+                    Some(p) if th <= p => format!(", before the peak (at {p:.4} rad)"),
+                    Some(p) => format!(", after the peak (at {p:.4} rad)"),
+                    None => String::new(),
+                };
+                println!("  {set} bars first yield at {t:.2} kN m, twist {th:.4} rad{when}");
+            }
+            _ => println!("  {set} bars do not yield"),
         }
     }
     for st in &s.section {

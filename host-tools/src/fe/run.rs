@@ -87,6 +87,8 @@ pub struct Summary {
     /// Peak torque, kN m: the largest torque of a cracked run, if the
     /// torque later fell at least 1% below it (none otherwise).
     pub peak_torque: Option<f64>,
+    /// Twist at `peak_torque`, rad.
+    pub peak_twist: Option<f64>,
     /// Largest torque reached, kN m.
     pub max_torque: f64,
     /// Shear stress across the mid-height section (thesis Figs 2.9, 2.10)
@@ -97,8 +99,14 @@ pub struct Summary {
     /// reached their yield strain, kN m (none if it never did; thesis
     /// Fig. 2.2).
     pub longitudinal_yield_torque: Option<f64>,
+    /// The twist at which that happened, rad: before or after
+    /// `peak_twist` says whether the bars yield on the way to the peak, as
+    /// the tests' hoops do (Fig. 2.2), or only in the collapse.
+    pub longitudinal_yield_twist: Option<f64>,
     /// The same for the transverse bars (hoops or spiral).
     pub transverse_yield_torque: Option<f64>,
+    /// The twist of the transverse bars' first yield, rad.
+    pub transverse_yield_twist: Option<f64>,
     /// Largest kinetic / internal energy ratio in the judged window.
     pub max_ke_ie_ratio: f64,
     /// Largest hourglass share of the internal energy in the window.
@@ -334,8 +342,10 @@ pub fn run<M: SolidMaterial, B: BarMaterial>(
         rec.bar_strains
             .iter()
             .position(|b| b[set].is_some_and(|e| e >= eps_y))
-            .map(|i| samples[i].torque.abs() / 1e3)
+            .map(|i| &samples[i])
     };
+    let longitudinal_yield = first_yield(0, yield_strain(spec.longitudinal.yield_mpa));
+    let transverse_yield = first_yield(1, yield_strain(spec.transverse.yield_mpa));
     let failures = verdict.failures();
     let cracking_torque = cracking.map(|(_, i)| samples[i].torque.abs() / 1e3);
     let table_2_1 = spec
@@ -395,10 +405,15 @@ pub fn run<M: SolidMaterial, B: BarMaterial>(
         saint_venant_stiffness: spec.saint_venant_stiffness() / 1e3,
         cracking_torque,
         peak_torque,
+        peak_twist: peak_at
+            .filter(|_| peak_torque.is_some())
+            .map(|p| samples[p].twist.abs()),
         max_torque: max_torque / 1e3,
         section: stages.iter().map(|st| cut.summarise(st)).collect(),
-        longitudinal_yield_torque: first_yield(0, yield_strain(spec.longitudinal.yield_mpa)),
-        transverse_yield_torque: first_yield(1, yield_strain(spec.transverse.yield_mpa)),
+        longitudinal_yield_torque: longitudinal_yield.map(|x| x.torque.abs() / 1e3),
+        longitudinal_yield_twist: longitudinal_yield.map(|x| x.twist.abs()),
+        transverse_yield_torque: transverse_yield.map(|x| x.torque.abs() / 1e3),
+        transverse_yield_twist: transverse_yield.map(|x| x.twist.abs()),
         max_ke_ie_ratio: verdict.max_ke_ie_ratio,
         max_hourglass_share: verdict.max_hourglass_share,
         max_energy_imbalance: verdict.max_imbalance,
