@@ -43,6 +43,26 @@ pub struct Sample {
 }
 
 impl Sample {
+    /// A sample of a torque-twist curve alone (N m, rad): the three
+    /// torques equal, no energies. For tests of what reads curves.
+    #[cfg(test)]
+    pub(crate) fn on_curve(twist: f64, torque: f64) -> Sample {
+        Sample {
+            t: 0.0,
+            twist,
+            torque,
+            column_torque: torque,
+            base_torque: torque,
+            axial_force: 0.0,
+            axial_displacement: 0.0,
+            kinetic: 0.0,
+            internal: 0.0,
+            hourglass: 0.0,
+            viscous: 0.0,
+            work: 0.0,
+        }
+    }
+
     /// The sample of the solver's current state.
     pub fn of<M: SolidMaterial, B: BarMaterial>(s: &Solver<M, B>) -> Sample {
         let d = s.top.displacement();
@@ -378,20 +398,7 @@ mod tests {
     use super::*;
 
     fn sample(twist: f64, torque: f64) -> Sample {
-        Sample {
-            t: 0.0,
-            twist,
-            torque,
-            column_torque: torque,
-            base_torque: torque,
-            axial_force: 0.0,
-            axial_displacement: 0.0,
-            kinetic: 0.0,
-            internal: 0.0,
-            hourglass: 0.0,
-            viscous: 0.0,
-            work: 0.0,
-        }
+        Sample::on_curve(twist, torque)
     }
 
     /// Bilinear: 2e7 N m/rad to 1e5 N m at 0.005 rad, then 1e6 N m/rad.

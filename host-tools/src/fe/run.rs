@@ -305,15 +305,17 @@ pub fn run<M: SolidMaterial, B: BarMaterial>(
             .any(|x| x.torque.abs() < 0.99 * max_torque)
     });
     let peak_torque = (cracking.is_some() && passed_peak).then_some(max_torque / 1e3);
+    // The sample of `peak_torque`: none unless the run cracked and peaked.
+    let peak_sample = peak_at.filter(|_| peak_torque.is_some());
     let pairs = output::torque_twist(samples);
     let mut stage_at = vec![];
     if let Some(p) = peak_at {
         if let Ok((_, c)) = backbone::cracking(&pairs, p) {
             stage_at.push(("cracking", c));
         }
-        if peak_torque.is_some() {
-            stage_at.push(("peak", p));
-        }
+    }
+    if let Some(p) = peak_sample {
+        stage_at.push(("peak", p));
     }
     stage_at.push(("end", samples.len() - 1));
     let stages: Vec<Stage> = stage_at
@@ -352,7 +354,7 @@ pub fn run<M: SolidMaterial, B: BarMaterial>(
         .reference
         .table_2_1
         .map(|r| Comparison::new(r, cracking_torque, peak_torque));
-    let checks_to_peak = peak_at.filter(|_| peak_torque.is_some()).map(|p| {
+    let checks_to_peak = peak_sample.map(|p| {
         let t_peak = samples[p].t;
         let v = trace.verdict_until(t_peak);
         let failures = v.failures();
@@ -368,7 +370,7 @@ pub fn run<M: SolidMaterial, B: BarMaterial>(
     if let Some((dir, _, _)) = &files {
         let marks = Marks {
             cracking: cracking.map(|(_, i)| i),
-            peak: peak_at.filter(|_| peak_torque.is_some()),
+            peak: peak_sample,
             fails_after_peak: !failures.is_empty()
                 && checks_to_peak.as_ref().is_some_and(|c| c.quasi_static),
         };
@@ -405,9 +407,7 @@ pub fn run<M: SolidMaterial, B: BarMaterial>(
         saint_venant_stiffness: spec.saint_venant_stiffness() / 1e3,
         cracking_torque,
         peak_torque,
-        peak_twist: peak_at
-            .filter(|_| peak_torque.is_some())
-            .map(|p| samples[p].twist.abs()),
+        peak_twist: peak_sample.map(|p| samples[p].twist.abs()),
         max_torque: max_torque / 1e3,
         section: stages.iter().map(|st| cut.summarise(st)).collect(),
         longitudinal_yield_torque: longitudinal_yield.map(|x| x.torque.abs() / 1e3),

@@ -54,8 +54,9 @@ pub fn figure(
 ) -> Result<Figure, Error> {
     let twist: Vec<f64> = samples.iter().map(|s| s.twist).collect();
     let torque: Vec<f64> = samples.iter().map(|s| s.torque / 1e3).collect();
-    // Head room above the highest curve or line, so that the reference
-    // lines' labels stay clear of the shaded band's label at the top.
+    // Head room above the highest of the curve and the two ultimate
+    // torques of Table 2.1, so that the reference lines' labels stay clear
+    // of the shaded band's label at the top.
     let refs = reference.map_or(0.0, |r| r.test_peak_knm.max(r.thesis_fe_peak_knm));
     let top = torque.iter().fold(refs, |m, &t| m.max(t));
     let bottom = torque.iter().fold(0.0f64, |m, &t| m.min(t));
@@ -107,20 +108,7 @@ mod tests {
     use super::*;
 
     fn sample(twist: f64, torque_knm: f64) -> Sample {
-        Sample {
-            t: twist,
-            twist,
-            torque: torque_knm * 1e3,
-            column_torque: 0.0,
-            base_torque: 0.0,
-            axial_force: 0.0,
-            axial_displacement: 0.0,
-            kinetic: 0.0,
-            internal: 0.0,
-            hourglass: 0.0,
-            viscous: 0.0,
-            work: 0.0,
-        }
+        Sample::on_curve(twist, torque_knm * 1e3)
     }
 
     const TP91: TorqueReference = TorqueReference {
