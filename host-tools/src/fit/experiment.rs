@@ -8,8 +8,8 @@
 //!   model predicts the displacement.
 
 use crate::model::Extras;
-use hysteresis::bwbn::{Bwbn, BwbnParams, Control, Observer, Sdof};
-use hysteresis::{Element, StepError};
+use hysteresis::bwbn::{Bwbn, BwbnParams, Control, Effect, Observer, Sdof};
+use hysteresis::{Element, Scalar, StepError};
 
 /// How the model is driven by the record.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -128,48 +128,102 @@ impl Experiment {
             force: Vec::with_capacity(n),
             energy: Vec::with_capacity(n),
         };
+        self.run(*params, extras, xi, control, observer, |s| {
+            out.output.push(s.output);
+            out.displacement.push(s.displacement);
+            out.force.push(s.force);
+            out.energy.push(s.energy);
+        })?;
+        Ok(out)
+    }
+
+    /// The predicted output in any arithmetic, for the built-in effects (no
+    /// custom ones): in [`Dual`](super::dual::Dual) numbers it carries the
+    /// derivatives of the prediction with respect to the parameters.
+    pub fn outputs<S: Scalar>(
+        &self,
+        params: BwbnParams<S>,
+        xi: S,
+        control: Control<S>,
+        observer: Option<Observer<S>>,
+    ) -> Result<Vec<S>, SimError> {
+        let mut out = Vec::with_capacity(self.len());
+        self.run(params, (), xi, control, observer, |s| out.push(s.output))?;
+        Ok(out)
+    }
+
+    /// Drives the model through the record, handing every sample to `sink`.
+    fn run<S: Scalar, X: Effect<S>>(
+        &self,
+        params: BwbnParams<S>,
+        extra: X,
+        xi: S,
+        control: Control<S>,
+        observer: Option<Observer<S>>,
+        mut sink: impl FnMut(Sample<S>),
+    ) -> Result<(), SimError> {
         match self.drive {
             Drive::Displacement => {
-                let mut el = Bwbn::with_extra(*params, extras, control);
+                let mut el = Bwbn::with_extra(params, extra, control);
                 for (i, &u) in self.input.iter().enumerate() {
-                    let r = el.set_trial(u).map_err(|e| SimError::Step(i, e))?;
+                    let r = el
+                        .set_trial(S::from_f64(u))
+                        .map_err(|e| SimError::Step(i, e))?;
                     el.commit();
-                    out.output.push(r.force);
-                    out.displacement.push(u);
-                    out.force.push(r.force);
-                    out.energy.push(el.committed().energy);
+                    sink(Sample {
+                        output: r.force,
+                        displacement: S::from_f64(u),
+                        force: r.force,
+                        energy: el.committed().energy,
+                    });
                 }
             }
             Drive::Force { dt, mass } => {
-                let per_mass = params.per_unit_mass(mass).map_err(SimError::Params)?;
+                let m = S::from_f64(mass);
+                let per_mass = params.per_unit_mass(m).map_err(SimError::Params)?;
                 let mut osc =
-                    Sdof::with_extra(per_mass, xi, extras, control).map_err(SimError::Params)?;
+                    Sdof::with_extra(per_mass, xi, extra, control).map_err(SimError::Params)?;
                 let first = self.input.first().copied().unwrap_or(0.0);
-                osc.set_forcing(first / mass)
+                osc.set_forcing(S::from_f64(first / mass))
                     .map_err(|e| SimError::Step(0, e))?;
-                let record = |osc: &Sdof<f64, &Extras>, out: &mut Prediction| {
+                let sample = |osc: &Sdof<S, X>| {
                     let s = osc.state();
-                    out.output.push(s.u);
-                    out.displacement.push(s.u);
-                    out.force.push(osc.restoring() * mass);
-                    out.energy.push(s.energy * mass);
+                    Sample {
+                        output: s.u,
+                        displacement: s.u,
+                        force: osc.restoring() * m,
+                        energy: s.energy * m,
+                    }
                 };
-                record(&osc, &mut out);
-                for i in 1..n {
-                    let f = self.input[i] / mass;
+                sink(sample(&osc));
+                let dt = S::from_f64(dt);
+                for i in 1..self.len() {
+                    let f = S::from_f64(self.input[i] / mass);
                     let step = match observer {
-                        Some(obs) => {
-                            osc.step_observed(dt, f, self.output[i - 1], self.output[i], obs)
-                        }
+                        Some(obs) => osc.step_observed(
+                            dt,
+                            f,
+                            S::from_f64(self.output[i - 1]),
+                            S::from_f64(self.output[i]),
+                            obs,
+                        ),
                         None => osc.step(dt, f),
                     };
                     step.map_err(|e| SimError::Step(i, e))?;
-                    record(&osc, &mut out);
+                    sink(sample(&osc));
                 }
             }
         }
-        Ok(out)
+        Ok(())
     }
+}
+
+/// One sample of a simulation.
+struct Sample<S> {
+    output: S,
+    displacement: S,
+    force: S,
+    energy: S,
 }
 
 impl Experiment {

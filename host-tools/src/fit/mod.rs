@@ -1,5 +1,6 @@
 //! Fitting model parameters to lab records (thesis ch. 3 and 4).
 
+pub mod dual;
 pub mod experiment;
 pub mod homotopy;
 pub mod identifiability;

@@ -14,6 +14,7 @@ use super::experiment::{Drive, Experiment};
 use crate::model::{Extras, ModelSpec};
 use anyhow::{bail, Result};
 use hysteresis::bwbn::{BwbnParams, ParamError, ParamSpec, Unit};
+use hysteresis::Scalar;
 use std::collections::BTreeMap;
 
 /// Reference scales of a record.
@@ -60,16 +61,18 @@ impl Scales {
     }
 
     /// Factor from normalised to physical value for a parameter of unit
-    /// `unit` (for `DisplacementPowMinusN`, at exponent `n`).
-    pub fn factor(&self, unit: Unit, n: f64) -> f64 {
+    /// `unit` (for `DisplacementPowMinusN`, at exponent `n`), in any
+    /// arithmetic (in [`Dual`](super::dual::Dual) numbers it carries the
+    /// dependence on a fitted `n`).
+    pub fn factor<S: Scalar>(&self, unit: Unit, n: S) -> S {
         match unit {
-            Unit::Dimensionless => 1.0,
-            Unit::Stiffness => self.stiffness(),
-            Unit::Displacement => self.disp,
-            Unit::DisplacementPowMinusN => self.disp.powf(-n),
-            Unit::PerEnergy => 1.0 / self.energy,
-            Unit::DisplacementPerEnergy => self.disp / self.energy,
-            Unit::Energy => self.energy,
+            Unit::Dimensionless => S::ONE,
+            Unit::Stiffness => S::from_f64(self.stiffness()),
+            Unit::Displacement => S::from_f64(self.disp),
+            Unit::DisplacementPowMinusN => S::from_f64(self.disp).powf(-n),
+            Unit::PerEnergy => S::from_f64(1.0 / self.energy),
+            Unit::DisplacementPerEnergy => S::from_f64(self.disp / self.energy),
+            Unit::Energy => S::from_f64(self.energy),
         }
     }
 }
@@ -231,23 +234,25 @@ impl Parametrization {
         )
     }
 
-    fn n_of(&self, x: &[f64]) -> f64 {
-        self.value_of("n", x).unwrap_or(1.0)
-    }
-
-    fn value_of(&self, name: &str, x: &[f64]) -> Option<f64> {
-        if let Some(v) = self.fixed.get(name) {
-            return Some(*v);
-        }
-        let i = self.free.iter().position(|f| f.spec.name == name)?;
-        // `n` is dimensionless, so its physical value is its normalised value.
-        Some(x[i] * self.scales.factor(self.free[i].spec.unit, 1.0))
-    }
-
     /// Physical values of every parameter (free and fixed) at `x`.
     pub fn physical(&self, x: &[f64]) -> BTreeMap<&'static str, f64> {
-        let n = self.n_of(x);
-        let mut out = self.fixed.clone();
+        self.physical_in(x)
+    }
+
+    /// [`physical`](Self::physical) in any arithmetic: with `x` in
+    /// [`Dual`](super::dual::Dual) numbers, the values carry their
+    /// derivatives with respect to `x`.
+    pub fn physical_in<S: Scalar>(&self, x: &[S]) -> BTreeMap<&'static str, S> {
+        // `n` is dimensionless, so its physical value is its normalised value.
+        let n = match self.free.iter().position(|f| f.spec.name == "n") {
+            Some(i) => x[i],
+            None => S::from_f64(self.fixed.get("n").copied().unwrap_or(1.0)),
+        };
+        let mut out: BTreeMap<&'static str, S> = self
+            .fixed
+            .iter()
+            .map(|(k, v)| (*k, S::from_f64(*v)))
+            .collect();
         for (f, &v) in self.free.iter().zip(x) {
             out.insert(f.spec.name, v * self.scales.factor(f.spec.unit, n));
         }
@@ -265,7 +270,7 @@ impl Parametrization {
         self.free
             .iter()
             .map(|f| match values.get(f.spec.name) {
-                Some(v) => v / self.scales.factor(f.spec.unit, n),
+                Some(v) => v / self.scales.factor::<f64>(f.spec.unit, n),
                 None => f.spec.off as f64,
             })
             .collect()
