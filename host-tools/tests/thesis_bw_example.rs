@@ -5,7 +5,7 @@
 
 use hyst::fit::homotopy;
 use hyst::fit::lsq::{self, Options};
-use hyst::fit::problem::Problem;
+use hyst::fit::problem::{LeastSquares, Problem};
 use hyst::model::ModelSpec;
 use std::collections::BTreeMap;
 
@@ -46,7 +46,7 @@ fn uniform(seed: &mut u64) -> f64 {
 fn least_squares_reaches_the_truth_from_20_random_starts() {
     let p = problem();
     let (lo, hi) = p.par.bounds();
-    let f = |x: &[f64]| p.residuals(x);
+    let f = LeastSquares::new(&p);
     let mut seed = 42;
     let mut evaluations = vec![];
     for _ in 0..20 {
@@ -67,10 +67,10 @@ fn least_squares_reaches_the_truth_from_20_random_starts() {
 fn homotopy_reaches_the_truth_from_half_and_one_and_a_half_times_it() {
     let p = problem();
     let (lo, hi) = p.par.bounds();
-    let f = |x: &[f64], lambda: f64| p.residuals_coupled(x, lambda);
+    let stage = |lambda: f64| LeastSquares::coupled(&p, lambda).expect("a force-driven record");
     for factor in [0.5, 1.5] {
         let path = homotopy::run(
-            &f,
+            &stage,
             &start(&p, &[factor; 5]),
             &lo,
             &hi,

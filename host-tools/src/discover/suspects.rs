@@ -34,7 +34,7 @@
 use super::diagnosis::Diagnosis;
 use super::signature::{self, Signature};
 use crate::fit::lsq::{self, Options};
-use crate::fit::problem::Problem;
+use crate::fit::problem::{LeastSquares, Problem};
 use crate::fit::run::{self, Outcome};
 use crate::model::EffectRef;
 use anyhow::Result;
@@ -150,7 +150,7 @@ pub fn refit(
         })
         .collect();
 
-    let f = |x: &[f64]| richer.residuals(x);
+    let f = LeastSquares::new(&richer);
     let warm = || {
         let evals = std::sync::atomic::AtomicUsize::new(0);
         let best = starts

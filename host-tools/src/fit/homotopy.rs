@@ -11,7 +11,7 @@
 //! often not the global one (the thesis' pendulum: from p = 15 a plain local
 //! search stops at 14.74, homotopy reaches 10).
 
-use super::lsq::{self, Options};
+use super::lsq::{self, Options, Residuals};
 
 /// One point of the homotopy path.
 #[derive(Clone, Debug, PartialEq)]
@@ -49,11 +49,13 @@ pub fn linear_schedule(steps: usize) -> Vec<f64> {
         .collect()
 }
 
-/// Runs the homotopy: `f(x, lambda)` returns the residuals of the coupled
-/// model (None when it cannot be simulated). `on_stage` is called after each
-/// stage (for progress display). Returns `None` if a stage cannot start.
-pub fn run<F>(
-    f: &F,
+/// Runs the homotopy: `stage(lambda)` is the residual function of the
+/// coupled model at `lambda` (its residuals are `None` where it cannot be
+/// simulated; a [`LeastSquares::coupled`](super::problem::LeastSquares::coupled)
+/// also gives exact Jacobians). `on_stage` is called after each stage (for
+/// progress display). Returns `None` if a stage cannot start.
+pub fn run<G, R>(
+    stage: &G,
     x0: &[f64],
     lo: &[f64],
     hi: &[f64],
@@ -62,14 +64,14 @@ pub fn run<F>(
     mut on_stage: impl FnMut(&Stage),
 ) -> Option<Path>
 where
-    F: Fn(&[f64], f64) -> Option<Vec<f64>> + Sync,
+    G: Fn(f64) -> R,
+    R: Residuals,
 {
     let mut x = x0.to_vec();
     let mut stages = Vec::with_capacity(schedule.len());
     let mut last = None;
     for &lambda in schedule {
-        let g = |p: &[f64]| f(p, lambda);
-        let sol = lsq::minimize(&g, &x, lo, hi, opts)?;
+        let sol = lsq::minimize(&stage(lambda), &x, lo, hi, opts)?;
         x.clone_from(&sol.x);
         let stage = Stage {
             lambda,
@@ -150,9 +152,10 @@ mod tests {
     #[test]
     fn homotopy_from_15_reaches_10() {
         let measured = simulate(10.0, 0.0, &[]);
-        let f = |x: &[f64], lambda: f64| residuals(&measured, x[0], lambda);
+        let measured = &measured;
+        let stage = |lambda: f64| move |x: &[f64]| residuals(measured, x[0], lambda);
         let path = run(
-            &f,
+            &stage,
             &[15.0],
             &[0.0],
             &[30.0],

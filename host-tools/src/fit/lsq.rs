@@ -1,5 +1,7 @@
-//! Bounded least squares: Levenberg-Marquardt with a finite-difference
-//! Jacobian (columns evaluated in parallel) and an active set for the bounds.
+//! Bounded least squares: Levenberg-Marquardt with an active set for the
+//! bounds, and the Jacobian either exact (from a [`Residuals`] that computes
+//! it, as a [`Problem`](super::problem::Problem) does in dual numbers) or by
+//! forward differences (columns evaluated in parallel).
 //!
 //! Minimises `||r(x)||^2` for `lo <= x <= hi`. Each iteration solves
 //! `(J^T J + mu diag(J^T J)) dx = -J^T r` over the variables not pinned at a
@@ -53,6 +55,26 @@ pub struct Solution {
     pub evaluations: usize,
 }
 
+/// A residual function `r(x)` for [`minimize`]. Every closure
+/// `Fn(&[f64]) -> Option<Vec<f64>>` is one (with differenced Jacobians).
+pub trait Residuals: Sync {
+    /// `r(x)`; `None` where it cannot be evaluated.
+    fn residuals(&self, x: &[f64]) -> Option<Vec<f64>>;
+
+    /// `r(x)` and its exact Jacobian from one evaluation, where this function
+    /// can compute them. `None` (the default) makes the solver use forward
+    /// differences.
+    fn residuals_jacobian(&self, _x: &[f64]) -> Option<(Vec<f64>, DMatrix<f64>)> {
+        None
+    }
+}
+
+impl<F: Fn(&[f64]) -> Option<Vec<f64>> + Sync> Residuals for F {
+    fn residuals(&self, x: &[f64]) -> Option<Vec<f64>> {
+        self(x)
+    }
+}
+
 fn cost(r: &[f64]) -> f64 {
     r.iter().map(|v| v * v).sum()
 }
@@ -71,7 +93,7 @@ pub fn jacobian<F>(
     rel: f64,
 ) -> Option<DMatrix<f64>>
 where
-    F: Fn(&[f64]) -> Option<Vec<f64>> + Sync,
+    F: Residuals + ?Sized,
 {
     let cols: Vec<Vec<f64>> = (0..x.len())
         .into_par_iter()
@@ -86,7 +108,7 @@ where
             for h in order {
                 let mut xp = x.to_vec();
                 xp[j] += h;
-                if let Some(rp) = f(&xp) {
+                if let Some(rp) = f.residuals(&xp) {
                     return rp.iter().zip(r0).map(|(a, b)| (a - b) / h).collect();
                 }
             }
@@ -100,11 +122,36 @@ where
     Some(jac)
 }
 
+/// `r(x)` and its Jacobian: exact where `f` computes it, else by forward
+/// differences ([`jacobian`]); with the number of evaluations it took.
+pub fn evaluate<F>(
+    f: &F,
+    x: &[f64],
+    lo: &[f64],
+    hi: &[f64],
+    rel: f64,
+) -> Option<(Vec<f64>, DMatrix<f64>, usize)>
+where
+    F: Residuals + ?Sized,
+{
+    if let Some((r, jac)) = f.residuals_jacobian(x) {
+        return Some((r, jac, 1));
+    }
+    let r = f.residuals(x)?;
+    let jac = jacobian(f, x, &r, lo, hi, rel)?;
+    Some((r, jac, 1 + x.len()))
+}
+
 /// Minimises `||f(x)||^2` over the box from `x0`. Returns `None` if `f(x0)`
 /// cannot be evaluated.
+///
+/// Trial points are evaluated alone; at an accepted one the Jacobian is
+/// computed exactly where `f` can (one more evaluation, counted as one in
+/// [`Solution::evaluations`]) and differenced otherwise (one evaluation per
+/// variable).
 pub fn minimize<F>(f: &F, x0: &[f64], lo: &[f64], hi: &[f64], opts: Options) -> Option<Solution>
 where
-    F: Fn(&[f64]) -> Option<Vec<f64>> + Sync,
+    F: Residuals + ?Sized,
 {
     minimize_observed(f, x0, lo, hi, opts, |_, _| {})
 }
@@ -120,7 +167,7 @@ pub fn minimize_observed<F>(
     mut on_iter: impl FnMut(usize, f64),
 ) -> Option<Solution>
 where
-    F: Fn(&[f64]) -> Option<Vec<f64>> + Sync,
+    F: Residuals + ?Sized,
 {
     let n = x0.len();
     let mut x: Vec<f64> = x0
@@ -128,13 +175,11 @@ where
         .zip(lo.iter().zip(hi))
         .map(|(v, (l, h))| v.clamp(*l, *h))
         .collect();
-    let mut r = f(&x)?;
+    let (mut r, mut jac, mut evals) = evaluate(f, &x, lo, hi, opts.fd_step)?;
+    let has_exact = evals == 1;
     let mut c = cost(&r);
-    let mut evals = 1;
     let mut mu = 1e-3;
     let mut iterations = 0;
-    let mut jac = jacobian(f, &x, &r, lo, hi, opts.fd_step)?;
-    evals += n;
     'outer: while iterations < opts.max_iter {
         iterations += 1;
         let jt = jac.transpose();
@@ -178,10 +223,21 @@ where
                 break 'outer;
             }
             evals += 1;
-            match f(&xn) {
+            match f.residuals(&xn) {
                 Some(rn) if cost(&rn) < c => {
                     let cn = cost(&rn);
                     let small = c - cn < opts.f_tol * c;
+                    // Exact where it can be had (a derivative that is not
+                    // finite falls back to differences).
+                    let exact = has_exact.then(|| f.residuals_jacobian(&xn)).flatten();
+                    evals += usize::from(has_exact);
+                    jac = match exact {
+                        Some((_, j)) => j,
+                        None => {
+                            evals += n;
+                            jacobian(f, &xn, &rn, lo, hi, opts.fd_step)?
+                        }
+                    };
                     x = xn;
                     r = rn;
                     c = cn;
@@ -199,16 +255,12 @@ where
         if !accepted {
             break;
         }
-        jac = jacobian(f, &x, &r, lo, hi, opts.fd_step)?;
-        evals += n;
     }
-    let jacobian = jacobian(f, &x, &r, lo, hi, opts.fd_step)?;
-    evals += n;
     Some(Solution {
         x,
         residuals: r,
         cost: c,
-        jacobian,
+        jacobian: jac,
         iterations,
         evaluations: evals,
     })

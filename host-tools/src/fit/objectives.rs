@@ -131,9 +131,15 @@ impl Target {
         }
     }
 
+    /// The factor from prediction error to residual: `1 / (RMS(measured) sqrt(samples))`,
+    /// so that the sum of squared residuals is NRMSE^2.
+    pub fn residual_scale(&self) -> f64 {
+        1.0 / (self.rms.max(f64::MIN_POSITIVE) * (self.output.len().max(1) as f64).sqrt())
+    }
+
     /// Residual vector with `||r||^2 = nrmse^2`, for least squares.
     pub fn residuals(&self, pred: &Prediction) -> Vec<f64> {
-        let s = 1.0 / (self.rms.max(f64::MIN_POSITIVE) * (self.output.len().max(1) as f64).sqrt());
+        let s = self.residual_scale();
         self.output
             .iter()
             .zip(&pred.output)

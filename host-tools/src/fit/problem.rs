@@ -1,13 +1,22 @@
 //! The fitting problem: a model spec on a record, seen by the optimisers as a
 //! function of a normalised parameter vector.
 
+use super::dual::Dual;
 use super::experiment::{Drive, Experiment, Prediction};
+use super::lsq::Residuals;
 use super::objectives::{Scores, Target, ENVELOPE_FLOOR};
 use super::parametrization::Candidate;
 use super::parametrization::Parametrization;
 use crate::model::ModelSpec;
 use anyhow::Result;
-use hysteresis::bwbn::{Control, Method, Observer};
+use hysteresis::bwbn::{BwbnParams, Control, EffectKind, Method, Observer, ENERGY_LIMIT};
+use hysteresis::Scalar;
+use nalgebra::DMatrix;
+use std::sync::atomic::{AtomicUsize, Ordering};
+
+/// The most free parameters whose Jacobian is computed in dual numbers (all
+/// the built-in effects and `xi`).
+pub const DUAL_MAX: usize = 20;
 
 /// A model spec fitted to a record.
 #[derive(Clone, Debug)]
@@ -76,7 +85,88 @@ impl Problem {
 
     /// Least-squares residuals at `x` (`||r||^2 = nrmse^2`).
     pub fn residuals(&self, x: &[f64]) -> Option<Vec<f64>> {
-        Some(self.target.residuals(&self.predict(x)?))
+        self.residuals_observed(x, None)
+    }
+
+    /// Residuals and their exact Jacobian at `x` (rows: samples, columns: the
+    /// free parameters) from one simulation in [`Dual`] numbers; `observer`
+    /// couples the model to the measurement as in
+    /// [`residuals_observed`](Self::residuals_observed). `None` when `x` cannot
+    /// be simulated, when the model has custom effects (they are written in
+    /// `f64`), when it has more than [`DUAL_MAX`] free parameters, when a
+    /// derivative is not finite, for asymmetry with pinching, or for pinching
+    /// at `zeta0 = 0` (where the core skips pinching's work, and with it the
+    /// derivative with respect to `zeta0`): the caller then differences. (With pinching, asymmetry makes dz/du jump where z
+    /// changes sign, as pinching's h(0) follows the side's Zu; the solution's
+    /// derivative then jumps at each crossing, which differentiating the
+    /// right-hand side cannot see: measured 1-5% off central differences.)
+    pub fn residuals_jacobian(
+        &self,
+        x: &[f64],
+        observer: Option<Observer<f64>>,
+    ) -> Option<(Vec<f64>, DMatrix<f64>)> {
+        match self.dim() {
+            0 => None,
+            1..=5 => self.dual_jacobian::<5>(x, observer),
+            6..=8 => self.dual_jacobian::<8>(x, observer),
+            9..=12 => self.dual_jacobian::<12>(x, observer),
+            13..=16 => self.dual_jacobian::<16>(x, observer),
+            17..=DUAL_MAX => self.dual_jacobian::<DUAL_MAX>(x, observer),
+            _ => None,
+        }
+    }
+
+    fn dual_jacobian<const N: usize>(
+        &self,
+        x: &[f64],
+        observer: Option<Observer<f64>>,
+    ) -> Option<(Vec<f64>, DMatrix<f64>)> {
+        let effects = self.par.spec.effects;
+        let jumps =
+            effects.contains(EffectKind::Asymmetry) && effects.contains(EffectKind::Pinching);
+        // Pinching skips its work when zeta0 is exactly 0 (the value is the
+        // same, the derivative with respect to zeta0 is not: it is lost).
+        let inert = effects.contains(EffectKind::Pinching)
+            && self.par.physical(x).get("zeta0") == Some(&0.0);
+        if self.par.spec.custom != 0 || jumps || inert {
+            return None;
+        }
+        let xd: Vec<Dual<N>> = x
+            .iter()
+            .enumerate()
+            .map(|(i, &v)| Dual::var(v, i))
+            .collect();
+        let values = self.par.physical_in(&xd);
+        let limit = self.par.energy_limit.map(Dual::cst);
+        let params = BwbnParams::from_named(effects, |name| {
+            if name == ENERGY_LIMIT {
+                return limit;
+            }
+            values.get(name).copied()
+        })
+        .ok()?;
+        let xi = values.get("xi").copied().unwrap_or(Dual::ZERO);
+        let c = self.control;
+        let control = Control {
+            method: c.method,
+            tol: Dual::cst(c.tol),
+            max_substeps: c.max_substeps,
+        };
+        let observer = observer.map(|o| Observer {
+            k_u: Dual::cst(o.k_u),
+            k_v: Dual::cst(o.k_v),
+        });
+        let out = self.exp.outputs(params, xi, control, observer).ok()?;
+        let s = self.target.residual_scale();
+        let mut jac = DMatrix::zeros(out.len(), x.len());
+        let mut r = Vec::with_capacity(out.len());
+        for (i, (yh, y)) in out.iter().zip(&self.target.output).enumerate() {
+            r.push((yh.v - y) * s);
+            for j in 0..x.len() {
+                jac[(i, j)] = yh.d[j] * s;
+            }
+        }
+        jac.iter().all(|v| v.is_finite()).then_some((r, jac))
     }
 
     /// Observer gains `K` of eq. 4.6 for this record: a critically damped
@@ -92,20 +182,86 @@ impl Problem {
         })
     }
 
-    /// Residuals of the observer-coupled model at homotopy parameter `lambda`
-    /// (force drive only).
-    pub fn residuals_coupled(&self, x: &[f64], lambda: f64) -> Option<Vec<f64>> {
+    /// The observer of homotopy parameter `lambda`: the gains of
+    /// [`observer_gains`](Self::observer_gains) times `lambda` (force drive only).
+    pub fn coupling(&self, lambda: f64) -> Option<Observer<f64>> {
         let k = self.observer_gains()?;
-        let obs = Observer {
+        Some(Observer {
             k_u: lambda * k.k_u,
             k_v: lambda * k.k_v,
-        };
+        })
+    }
+
+    /// Residuals at `x` of the model coupled to the measurement by
+    /// `observer` (thesis eq. 4.6; `None`: the free model).
+    pub fn residuals_observed(
+        &self,
+        x: &[f64],
+        observer: Option<Observer<f64>>,
+    ) -> Option<Vec<f64>> {
         let c = self.params(x)?;
         let pred = self
             .exp
-            .simulate_observed(&c.params, &c.extras, c.xi, self.control, Some(obs))
+            .simulate_observed(&c.params, &c.extras, c.xi, self.control, observer)
             .ok()?;
         Some(self.target.residuals(&pred))
+    }
+}
+
+/// The problem as least squares sees it: its residuals, free or coupled to
+/// the measurement by an observer, with exact Jacobians where
+/// [`Problem::residuals_jacobian`] can compute them. Counts its evaluations
+/// when given a counter (for progress display).
+#[derive(Clone, Copy)]
+pub struct LeastSquares<'a> {
+    problem: &'a Problem,
+    observer: Option<Observer<f64>>,
+    counter: Option<&'a AtomicUsize>,
+}
+
+impl<'a> LeastSquares<'a> {
+    /// The free model's residuals.
+    pub fn new(problem: &'a Problem) -> Self {
+        LeastSquares {
+            problem,
+            observer: None,
+            counter: None,
+        }
+    }
+
+    /// The residuals of the model coupled at homotopy parameter `lambda`
+    /// (`None` for a displacement-driven record, which has no observer).
+    pub fn coupled(problem: &'a Problem, lambda: f64) -> Option<Self> {
+        Some(LeastSquares {
+            observer: Some(problem.coupling(lambda)?),
+            ..Self::new(problem)
+        })
+    }
+
+    /// The same residuals, adding one to `counter` per evaluation.
+    pub fn counting(self, counter: &'a AtomicUsize) -> Self {
+        LeastSquares {
+            counter: Some(counter),
+            ..self
+        }
+    }
+
+    fn count(&self) {
+        if let Some(c) = self.counter {
+            c.fetch_add(1, Ordering::Relaxed);
+        }
+    }
+}
+
+impl Residuals for LeastSquares<'_> {
+    fn residuals(&self, x: &[f64]) -> Option<Vec<f64>> {
+        self.count();
+        self.problem.residuals_observed(x, self.observer)
+    }
+
+    fn residuals_jacobian(&self, x: &[f64]) -> Option<(Vec<f64>, DMatrix<f64>)> {
+        self.count();
+        self.problem.residuals_jacobian(x, self.observer)
     }
 }
 

@@ -7,7 +7,7 @@ use super::identifiability::{self, Identifiability};
 use super::lsq::{self, Options};
 use super::nsga2::Nsga2;
 use super::objectives::Scores;
-use super::problem::{Ortiz, Problem};
+use super::problem::{LeastSquares, Ortiz, Problem};
 use anyhow::{anyhow, bail, Result};
 use rayon::prelude::*;
 use std::collections::BTreeMap;
@@ -159,10 +159,7 @@ pub fn fit_with(
     let (lo, hi) = problem.par.bounds();
     let evals = AtomicUsize::new(0);
     let best = Mutex::new(f64::INFINITY);
-    let residuals = |x: &[f64]| {
-        evals.fetch_add(1, Ordering::Relaxed);
-        problem.residuals(x)
-    };
+    let residuals = LeastSquares::new(problem).counting(&evals);
     let report = |cost: f64| {
         let mut b = best.lock().expect("progress lock");
         if cost < *b {
@@ -195,9 +192,10 @@ pub fn fit_with(
                      force-driven record; this record is driven by displacement: use --method lsq, nsga2 or auto"
                 );
             }
-            let coupled = |x: &[f64], lambda: f64| {
-                evals.fetch_add(1, Ordering::Relaxed);
-                problem.residuals_coupled(x, lambda)
+            let coupled = |lambda: f64| {
+                LeastSquares::coupled(problem, lambda)
+                    .expect("a force-driven record has an observer")
+                    .counting(&evals)
             };
             homotopy::run(
                 &coupled,
@@ -259,10 +257,14 @@ fn evolve(problem: &Problem, evolution: &Evolution, progress: &dyn Progress) -> 
     }
     let x = chosen.variables.clone();
     let (lo, hi) = problem.par.bounds();
-    let f = |x: &[f64]| problem.residuals(x);
-    let r = f(&x).ok_or_else(|| anyhow!("the chosen parameter set cannot be simulated"))?;
-    let jacobian = lsq::jacobian(&f, &x, &r, &lo, &hi, Options::default().fd_step)
-        .ok_or_else(|| anyhow!("the model cannot be simulated next to the chosen parameter set"))?;
+    let (r, jacobian, used) = lsq::evaluate(
+        &LeastSquares::new(problem),
+        &x,
+        &lo,
+        &hi,
+        Options::default().fd_step,
+    )
+    .ok_or_else(|| anyhow!("the chosen parameter set, or one next to it, cannot be simulated"))?;
     let cost = r.iter().map(|v| v * v).sum();
     let sol = lsq::Solution {
         x,
@@ -272,12 +274,7 @@ fn evolve(problem: &Problem, evolution: &Evolution, progress: &dyn Progress) -> 
         iterations: settings.generations,
         evaluations: 0,
     };
-    finish(
-        problem,
-        "nsga2",
-        sol,
-        outcome.evaluations + problem.dim() + 1,
-    )
+    finish(problem, "nsga2", sol, outcome.evaluations + used)
 }
 
 /// Scores and identifiability of a least-squares solution.
@@ -307,11 +304,16 @@ pub fn finish(
 /// identifiability without fitting.
 pub fn evaluate_at(problem: &Problem, x: &[f64], method: &str) -> Result<Outcome> {
     let (lo, hi) = problem.par.bounds();
-    let f = |x: &[f64]| problem.residuals(x);
-    let r =
-        f(x).ok_or_else(|| anyhow!("the given parameters cannot be simulated on this record"))?;
-    let jacobian = lsq::jacobian(&f, x, &r, &lo, &hi, Options::default().fd_step)
-        .ok_or_else(|| anyhow!("the model cannot be simulated next to the given parameters"))?;
+    let (r, jacobian, used) = lsq::evaluate(
+        &LeastSquares::new(problem),
+        x,
+        &lo,
+        &hi,
+        Options::default().fd_step,
+    )
+    .ok_or_else(|| {
+        anyhow!("the given parameters, or ones next to them, cannot be simulated on this record")
+    })?;
     let cost = r.iter().map(|v| v * v).sum();
     let sol = lsq::Solution {
         x: x.to_vec(),
@@ -321,5 +323,5 @@ pub fn evaluate_at(problem: &Problem, x: &[f64], method: &str) -> Result<Outcome
         iterations: 0,
         evaluations: 0,
     };
-    finish(problem, method, sol, problem.dim() + 1)
+    finish(problem, method, sol, used)
 }
