@@ -96,10 +96,11 @@ impl Problem {
     /// `f64`), when it has more than [`DUAL_MAX`] free parameters, when a
     /// derivative is not finite, for asymmetry with pinching, or for pinching
     /// at `zeta0 = 0` (where the core skips pinching's work, and with it the
-    /// derivative with respect to `zeta0`): the caller then differences. (With pinching, asymmetry makes dz/du jump where z
-    /// changes sign, as pinching's h(0) follows the side's Zu; the solution's
-    /// derivative then jumps at each crossing, which differentiating the
-    /// right-hand side cannot see: measured 1-5% off central differences.)
+    /// derivative with respect to `zeta0`): the caller then differences.
+    /// (With pinching, asymmetry makes dz/du jump where z changes sign, as
+    /// pinching's h(0) follows the side's Zu; the solution's derivative then
+    /// jumps at each crossing, which differentiating the right-hand side cannot
+    /// see: measured 1-5% off central differences.)
     pub fn residuals_jacobian(
         &self,
         x: &[f64],
@@ -124,11 +125,7 @@ impl Problem {
         let effects = self.par.spec.effects;
         let jumps =
             effects.contains(EffectKind::Asymmetry) && effects.contains(EffectKind::Pinching);
-        // Pinching skips its work when zeta0 is exactly 0 (the value is the
-        // same, the derivative with respect to zeta0 is not: it is lost).
-        let inert = effects.contains(EffectKind::Pinching)
-            && self.par.physical(x).get("zeta0") == Some(&0.0);
-        if self.par.spec.custom != 0 || jumps || inert {
+        if self.par.spec.custom != 0 || jumps {
             return None;
         }
         let xd: Vec<Dual<N>> = x
@@ -137,6 +134,13 @@ impl Problem {
             .map(|(i, &v)| Dual::var(v, i))
             .collect();
         let values = self.par.physical_in(&xd);
+        // Pinching skips its work when zeta0 is exactly 0 (the value is the
+        // same, the derivative with respect to zeta0 is not: it is lost).
+        let inert = effects.contains(EffectKind::Pinching)
+            && values.get("zeta0").is_some_and(|z| z.v == 0.0);
+        if inert {
+            return None;
+        }
         let limit = self.par.energy_limit.map(Dual::cst);
         let params = BwbnParams::from_named(effects, |name| {
             if name == ENERGY_LIMIT {
