@@ -63,7 +63,8 @@ pub trait Residuals: Sync {
 
     /// `r(x)` and its exact Jacobian from one evaluation, where this function
     /// can compute them. `None` (the default) makes the solver use forward
-    /// differences.
+    /// differences at `x`; it is asked again at every accepted point, so a
+    /// refusal should be cheap (decided before evaluating).
     fn residuals_jacobian(&self, _x: &[f64]) -> Option<(Vec<f64>, DMatrix<f64>)> {
         None
     }
@@ -146,9 +147,10 @@ where
 /// cannot be evaluated.
 ///
 /// Trial points are evaluated alone; at an accepted one the Jacobian is
-/// computed exactly where `f` can (one more evaluation, counted as one in
-/// [`Solution::evaluations`]) and differenced otherwise (one evaluation per
-/// variable).
+/// computed exactly where `f` can at that point (one more evaluation,
+/// counted as one in [`Solution::evaluations`]) and differenced otherwise
+/// (one evaluation per variable). A fit can so start differenced (where the
+/// exact path refuses) and go exact when it leaves that point.
 pub fn minimize<F>(f: &F, x0: &[f64], lo: &[f64], hi: &[f64], opts: Options) -> Option<Solution>
 where
     F: Residuals + ?Sized,
@@ -176,7 +178,6 @@ where
         .map(|(v, (l, h))| v.clamp(*l, *h))
         .collect();
     let (mut r, mut jac, mut evals) = evaluate(f, &x, lo, hi, opts.fd_step)?;
-    let has_exact = evals == 1;
     let mut c = cost(&r);
     let mut mu = 1e-3;
     let mut iterations = 0;
@@ -227,12 +228,13 @@ where
                 Some(rn) if cost(&rn) < c => {
                     let cn = cost(&rn);
                     let small = c - cn < opts.f_tol * c;
-                    // Exact where it can be had (a derivative that is not
-                    // finite falls back to differences).
-                    let exact = has_exact.then(|| f.residuals_jacobian(&xn)).flatten();
-                    evals += usize::from(has_exact);
-                    jac = match exact {
-                        Some((_, j)) => j,
+                    // Exact where it can be had at this point, else
+                    // differenced.
+                    jac = match f.residuals_jacobian(&xn) {
+                        Some((_, j)) => {
+                            evals += 1;
+                            j
+                        }
                         None => {
                             evals += n;
                             jacobian(f, &xn, &rn, lo, hi, opts.fd_step)?
@@ -333,5 +335,59 @@ mod tests {
             s.x
         );
         assert!(s.cost < 1e-16);
+    }
+
+    /// The exponential fit with an exact Jacobian that is refused at the
+    /// starting point (as the dual path refuses pinching at zeta0 = 0): the
+    /// solver differences there and goes exact once it has moved.
+    #[test]
+    fn goes_exact_after_a_start_where_the_exact_jacobian_is_refused() {
+        use std::sync::atomic::{AtomicUsize, Ordering};
+        struct Decay {
+            t: Vec<f64>,
+            y: Vec<f64>,
+            start: [f64; 2],
+            plain: AtomicUsize,
+            exact: AtomicUsize,
+        }
+        impl Residuals for Decay {
+            fn residuals(&self, p: &[f64]) -> Option<Vec<f64>> {
+                self.plain.fetch_add(1, Ordering::Relaxed);
+                Some(self.values(p))
+            }
+            fn residuals_jacobian(&self, p: &[f64]) -> Option<(Vec<f64>, DMatrix<f64>)> {
+                if p == self.start {
+                    return None;
+                }
+                self.exact.fetch_add(1, Ordering::Relaxed);
+                let jac = DMatrix::from_fn(self.t.len(), 2, |i, j| {
+                    let e = (-p[1] * self.t[i]).exp();
+                    [e, -p[0] * self.t[i] * e][j]
+                });
+                Some((self.values(p), jac))
+            }
+        }
+        impl Decay {
+            fn values(&self, p: &[f64]) -> Vec<f64> {
+                let r = self.t.iter().zip(&self.y);
+                r.map(|(t, y)| p[0] * (-p[1] * t).exp() - y).collect()
+            }
+        }
+        let t: Vec<f64> = (0..50).map(|i| i as f64 * 0.1).collect();
+        let y = t.iter().map(|t| 3.0 * (-1.3 * t).exp()).collect();
+        let start = [1.0, 0.2];
+        let f = Decay {
+            t,
+            y,
+            start,
+            plain: AtomicUsize::new(0),
+            exact: AtomicUsize::new(0),
+        };
+        let s = minimize(&f, &start, &[0.0, 0.0], &[10.0, 10.0], Options::default()).unwrap();
+        assert!((s.x[0] - 3.0).abs() < 1e-6 && (s.x[1] - 1.3).abs() < 1e-6);
+        let exact = f.exact.load(Ordering::Relaxed);
+        assert!(exact > 0, "never exact after the start");
+        // The count is honest: every plain and every exact evaluation.
+        assert_eq!(s.evaluations, f.plain.load(Ordering::Relaxed) + exact);
     }
 }

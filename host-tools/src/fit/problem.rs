@@ -117,30 +117,35 @@ impl Problem {
         }
     }
 
+    /// Whether [`residuals_jacobian`](Self::residuals_jacobian) computes the
+    /// Jacobian at `x` rather than refusing before it simulates (custom
+    /// effects, more than [`DUAL_MAX`] free parameters, asymmetry with
+    /// pinching, pinching at `zeta0 = 0`). Cheap: no simulation.
+    pub fn has_exact_jacobian(&self, x: &[f64]) -> bool {
+        let effects = self.par.spec.effects;
+        let pinching = effects.contains(EffectKind::Pinching);
+        let jumps = pinching && effects.contains(EffectKind::Asymmetry);
+        // Pinching skips its work when zeta0 is exactly 0 (the value is the
+        // same, the derivative with respect to zeta0 is not: it is lost).
+        let inert = pinching && self.par.physical(x).get("zeta0") == Some(&0.0);
+        (1..=DUAL_MAX).contains(&self.dim()) && self.par.spec.custom == 0 && !jumps && !inert
+    }
+
     fn dual_jacobian<const N: usize>(
         &self,
         x: &[f64],
         observer: Option<Observer<f64>>,
     ) -> Option<(Vec<f64>, DMatrix<f64>)> {
-        let effects = self.par.spec.effects;
-        let jumps =
-            effects.contains(EffectKind::Asymmetry) && effects.contains(EffectKind::Pinching);
-        if self.par.spec.custom != 0 || jumps {
+        if !self.has_exact_jacobian(x) {
             return None;
         }
+        let effects = self.par.spec.effects;
         let xd: Vec<Dual<N>> = x
             .iter()
             .enumerate()
             .map(|(i, &v)| Dual::var(v, i))
             .collect();
         let values = self.par.physical_in(&xd);
-        // Pinching skips its work when zeta0 is exactly 0 (the value is the
-        // same, the derivative with respect to zeta0 is not: it is lost).
-        let inert = effects.contains(EffectKind::Pinching)
-            && values.get("zeta0").is_some_and(|z| z.v == 0.0);
-        if inert {
-            return None;
-        }
         let limit = self.par.energy_limit.map(Dual::cst);
         let params = BwbnParams::from_named(effects, |name| {
             if name == ENERGY_LIMIT {
@@ -264,6 +269,9 @@ impl Residuals for LeastSquares<'_> {
     }
 
     fn residuals_jacobian(&self, x: &[f64]) -> Option<(Vec<f64>, DMatrix<f64>)> {
+        if !self.problem.has_exact_jacobian(x) {
+            return None;
+        }
         self.count();
         self.problem.residuals_jacobian(x, self.observer)
     }
