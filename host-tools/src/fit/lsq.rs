@@ -145,6 +145,23 @@ where
     Some((r, jac, 1 + x.len()))
 }
 
+/// The [`Solution`] at `x` without iterating: `r(x)`, its cost and its
+/// Jacobian ([`evaluate`]), with the evaluations they took.
+pub fn solution_at<F>(f: &F, x: &[f64], lo: &[f64], hi: &[f64], rel: f64) -> Option<Solution>
+where
+    F: Residuals + ?Sized,
+{
+    let (residuals, jacobian, evaluations) = evaluate(f, x, lo, hi, rel)?;
+    Some(Solution {
+        x: x.to_vec(),
+        cost: cost(&residuals),
+        residuals,
+        jacobian,
+        iterations: 0,
+        evaluations,
+    })
+}
+
 /// Minimises `||f(x)||^2` over the box from `x0`. Returns `None` if `f(x0)`
 /// cannot be evaluated.
 ///

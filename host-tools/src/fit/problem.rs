@@ -106,6 +106,19 @@ impl Problem {
         x: &[f64],
         observer: Option<Observer<f64>>,
     ) -> Option<(Vec<f64>, DMatrix<f64>)> {
+        if !self.has_exact_jacobian(x) {
+            return None;
+        }
+        self.jacobian_in_duals(x, observer)
+    }
+
+    /// [`residuals_jacobian`](Self::residuals_jacobian) where
+    /// [`has_exact_jacobian`](Self::has_exact_jacobian) holds.
+    fn jacobian_in_duals(
+        &self,
+        x: &[f64],
+        observer: Option<Observer<f64>>,
+    ) -> Option<(Vec<f64>, DMatrix<f64>)> {
         match self.dim() {
             0 => None,
             1..=5 => self.dual_jacobian::<5>(x, observer),
@@ -136,9 +149,6 @@ impl Problem {
         x: &[f64],
         observer: Option<Observer<f64>>,
     ) -> Option<(Vec<f64>, DMatrix<f64>)> {
-        if !self.has_exact_jacobian(x) {
-            return None;
-        }
         let effects = self.par.spec.effects;
         let xd: Vec<Dual<N>> = x
             .iter()
@@ -273,7 +283,7 @@ impl Residuals for LeastSquares<'_> {
             return None;
         }
         self.count();
-        self.problem.residuals_jacobian(x, self.observer)
+        self.problem.jacobian_in_duals(x, self.observer)
     }
 }
 

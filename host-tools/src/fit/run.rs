@@ -255,26 +255,23 @@ fn evolve(problem: &Problem, evolution: &Evolution, progress: &dyn Progress) -> 
     if let Some(path) = &evolution.front_csv {
         ortiz.write_front(path, &outcome.first_front())?;
     }
-    let x = chosen.variables.clone();
-    let (lo, hi) = problem.par.bounds();
-    let (r, jacobian, used) = lsq::evaluate(
-        &LeastSquares::new(problem),
-        &x,
-        &lo,
-        &hi,
-        Options::default().fd_step,
-    )
-    .ok_or_else(|| anyhow!("the chosen parameter set, or one next to it, cannot be simulated"))?;
-    let cost = r.iter().map(|v| v * v).sum();
+    let sol = solution_at(problem, &chosen.variables).ok_or_else(|| {
+        anyhow!("the chosen parameter set, or one next to it, cannot be simulated")
+    })?;
+    let evaluations = outcome.evaluations + sol.evaluations;
     let sol = lsq::Solution {
-        x,
-        residuals: r,
-        cost,
-        jacobian,
         iterations: settings.generations,
-        evaluations: 0,
+        ..sol
     };
-    finish(problem, "nsga2", sol, outcome.evaluations + used)
+    finish(problem, "nsga2", sol, evaluations)
+}
+
+/// The least-squares view of `problem` at `x`: residuals and Jacobian,
+/// exact where it can be had.
+fn solution_at(problem: &Problem, x: &[f64]) -> Option<lsq::Solution> {
+    let (lo, hi) = problem.par.bounds();
+    let f = LeastSquares::new(problem);
+    lsq::solution_at(&f, x, &lo, &hi, Options::default().fd_step)
 }
 
 /// Scores and identifiability of a least-squares solution.
@@ -303,25 +300,9 @@ pub fn finish(
 /// The outcome at a given point `x` (a parameter file's values): scores and
 /// identifiability without fitting.
 pub fn evaluate_at(problem: &Problem, x: &[f64], method: &str) -> Result<Outcome> {
-    let (lo, hi) = problem.par.bounds();
-    let (r, jacobian, used) = lsq::evaluate(
-        &LeastSquares::new(problem),
-        x,
-        &lo,
-        &hi,
-        Options::default().fd_step,
-    )
-    .ok_or_else(|| {
+    let sol = solution_at(problem, x).ok_or_else(|| {
         anyhow!("the given parameters, or ones next to them, cannot be simulated on this record")
     })?;
-    let cost = r.iter().map(|v| v * v).sum();
-    let sol = lsq::Solution {
-        x: x.to_vec(),
-        residuals: r,
-        cost,
-        jacobian,
-        iterations: 0,
-        evaluations: 0,
-    };
-    finish(problem, method, sol, used)
+    let evaluations = sol.evaluations;
+    finish(problem, method, sol, evaluations)
 }
