@@ -2,8 +2,11 @@
 //! model up with its record, says where it fails and which effect is
 //! missing.
 
-use super::fit::{load, parse_fix, Bar};
+use super::columns::ReadArgs;
+use super::fit::{load_timed, parse_fix, Bar};
+use crate::discover::rate::{self, RateCheck};
 use crate::discover::{page, weigh, Diagnosis, Suspect, WeighOptions};
+use crate::fit::experiment::Drive;
 use crate::fit::problem::Problem;
 use crate::fit::run::{self, Method, Outcome, Progress};
 use crate::model::{EffectRef, ModelSpec, ParamFile};
@@ -32,9 +35,8 @@ pub struct Common {
     /// Mass in kg, for force-driven records.
     #[arg(long)]
     pub mass: Option<f64>,
-    /// Sample rate in Hz, for records without a time column.
-    #[arg(long)]
-    pub sample_rate: Option<f64>,
+    #[command(flatten)]
+    pub read: ReadArgs,
     /// Write a self-contained HTML report with SVG plots.
     #[arg(long)]
     pub report: Option<PathBuf>,
@@ -76,13 +78,14 @@ pub struct DiagnoseArgs {
     pub params: Option<PathBuf>,
 }
 
-/// Fits (or evaluates the given parameters of) the model on the record.
+/// Fits (or evaluates the given parameters of) the model on the record; also
+/// returns the record's sample times, if it has them.
 pub fn initial_fit(
     common: &Common,
     params: Option<&Path>,
     bar: &Bar,
-) -> Result<(Problem, Outcome)> {
-    let exp = load(&common.data, common.sample_rate, common.mass)?;
+) -> Result<(Problem, Outcome, Option<Vec<f64>>)> {
+    let (exp, time) = load_timed(&common.data, &common.read, common.mass)?;
     let problem = Problem::new(common.model, exp, &common.fix)
         .with_context(|| common.data.display().to_string())?;
     if problem.dim() == 0 {
@@ -103,7 +106,21 @@ pub fn initial_fit(
         }
         None => run::fit(&problem, Method::Auto, &problem.par.default_start(), bar)?,
     };
-    Ok((problem, outcome))
+    Ok((problem, outcome, time))
+}
+
+/// Rate dependence in the residual of a displacement-driven fit of a record
+/// with sample times ([`rate::check`]).
+pub fn rate_check(
+    problem: &Problem,
+    outcome: &Outcome,
+    d: &Diagnosis,
+    time: Option<&[f64]>,
+) -> Option<RateCheck> {
+    match problem.exp.drive {
+        Drive::Displacement => rate::check(d, time?, outcome.scores.nrmse),
+        Drive::Force { .. } => None,
+    }
 }
 
 /// JSON of the suspects, most likely first.
@@ -132,6 +149,7 @@ pub fn diagnosis_json(
     outcome: &Outcome,
     d: &Diagnosis,
     suspects: &[Suspect],
+    rate: Option<&RateCheck>,
 ) -> Value {
     json!({
         "model": problem.par.spec.to_string(),
@@ -142,11 +160,18 @@ pub fn diagnosis_json(
         "places": d.places,
         "cycles": d.cycles,
         "suspects": suspects_json(suspects),
+        "rate_dependence": rate,
     })
 }
 
 /// The diagnosis as text.
-pub fn print_diagnosis(problem: &Problem, outcome: &Outcome, d: &Diagnosis, suspects: &[Suspect]) {
+pub fn print_diagnosis(
+    problem: &Problem,
+    outcome: &Outcome,
+    d: &Diagnosis,
+    suspects: &[Suspect],
+    rate: Option<&RateCheck>,
+) {
     println!(
         "model {}: NRMSE {:.4} with {} parameters, total energy off by {:.1}%",
         problem.par.spec,
@@ -168,15 +193,34 @@ pub fn print_diagnosis(problem: &Problem, outcome: &Outcome, d: &Diagnosis, susp
         println!("  {}. {:<22} {mark}", i + 1, s.effect.name());
         println!("     {}", s.evidence);
     }
+    if let Some(r) = rate {
+        println!("beyond the library's effects:");
+        let mark = if r.significant {
+            "SIGNIFICANT"
+        } else {
+            "not significant"
+        };
+        println!("  rate dependence           {mark}");
+        println!("     {}", r.evidence);
+    }
+}
+
+/// Adds the rate check to an HTML report.
+pub fn rate_section(report: &mut Report, rate: Option<&RateCheck>) {
+    if let Some(r) = rate {
+        report.section("Beyond the library: rate dependence");
+        report.paragraph(&r.evidence);
+    }
 }
 
 /// Runs `hyst diagnose`.
 pub fn run(args: DiagnoseArgs) -> Result<()> {
     let bar = Bar::new(&format!("diagnose {}", args.common.model), args.common.json);
-    let (problem, outcome) = initial_fit(&args.common, args.params.as_deref(), &bar)?;
+    let (problem, outcome, time) = initial_fit(&args.common, args.params.as_deref(), &bar)?;
     let d = Diagnosis::new(&problem, &outcome)?;
     bar.status("weighing the candidate effects");
     let suspects = weigh(&problem, &outcome, &d, &args.common.weigh_options()?);
+    let rate = rate_check(&problem, &outcome, &d, time.as_deref());
     bar.finish();
     if let Some(path) = &args.common.report {
         let mut report = Report::new(&format!("Diagnosis of {}", args.common.data.display()));
@@ -192,6 +236,7 @@ pub fn run(args: DiagnoseArgs) -> Result<()> {
             &suspects,
             &units,
         )?;
+        rate_section(&mut report, rate.as_ref());
         report
             .write(path)
             .with_context(|| format!("{}: cannot write", path.display()))?;
@@ -199,10 +244,16 @@ pub fn run(args: DiagnoseArgs) -> Result<()> {
     if args.common.json {
         println!(
             "{}",
-            serde_json::to_string_pretty(&diagnosis_json(&problem, &outcome, &d, &suspects))?
+            serde_json::to_string_pretty(&diagnosis_json(
+                &problem,
+                &outcome,
+                &d,
+                &suspects,
+                rate.as_ref()
+            ))?
         );
     } else {
-        print_diagnosis(&problem, &outcome, &d, &suspects);
+        print_diagnosis(&problem, &outcome, &d, &suspects, rate.as_ref());
     }
     Ok(())
 }

@@ -2,7 +2,9 @@
 //! significant effect, refit from the previous fit, repeat until nothing
 //! significant is left; then the ladder.
 
-use super::diagnose::{diagnosis_json, initial_fit, print_diagnosis, Common};
+use super::diagnose::{
+    diagnosis_json, initial_fit, print_diagnosis, rate_check, rate_section, Common,
+};
 use super::fit::Bar;
 use crate::discover::{discover, page};
 use crate::fit::run::Progress;
@@ -26,7 +28,7 @@ pub struct DiscoverArgs {
 pub fn run(args: DiscoverArgs) -> Result<()> {
     let quiet = args.common.json;
     let bar = Bar::new(&format!("discover from {}", args.common.model), quiet);
-    let (problem, outcome) = initial_fit(&args.common, None, &bar)?;
+    let (problem, outcome, time) = initial_fit(&args.common, None, &bar)?;
     let options = args.common.weigh_options()?;
     let discovery = discover(problem, outcome, &options, |step| {
         let top = step.suspects.iter().find(|s| s.significant);
@@ -44,6 +46,13 @@ pub fn run(args: DiscoverArgs) -> Result<()> {
             }
         ));
     })?;
+    let last = discovery.last();
+    let rate = rate_check(
+        &last.problem,
+        &last.outcome,
+        &last.diagnosis,
+        time.as_deref(),
+    );
     bar.finish();
     let rungs: Vec<PlotRung> = discovery
         .rungs
@@ -65,22 +74,23 @@ pub fn run(args: DiscoverArgs) -> Result<()> {
             displacement: "mm",
             force: "kN",
         };
-        let report = page::discovery_page(
+        let mut report = page::discovery_page(
             &format!("Discovery on {}", args.common.data.display()),
             &discovery,
             &units,
         )?;
+        rate_section(&mut report, rate.as_ref());
         report
             .write(path)
             .with_context(|| format!("{}: cannot write", path.display()))?;
     }
-    let last = discovery.last();
     if args.common.json {
         let mut obj = diagnosis_json(
             &last.problem,
             &last.outcome,
             &last.diagnosis,
             &last.suspects,
+            rate.as_ref(),
         );
         obj["ladder"] = json!(discovery.rungs);
         println!("{}", serde_json::to_string_pretty(&obj)?);
@@ -112,6 +122,7 @@ pub fn run(args: DiscoverArgs) -> Result<()> {
             &last.outcome,
             &last.diagnosis,
             &last.suspects,
+            rate.as_ref(),
         );
     }
     Ok(())

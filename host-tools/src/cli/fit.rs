@@ -1,7 +1,8 @@
 //! `hyst fit DATA --model SPEC`: parameters of a model from a lab record.
 
+use super::columns::ReadArgs;
 use super::ModelArg;
-use crate::data::{self, ReadOptions};
+use crate::data;
 use crate::fit::experiment::Experiment;
 use crate::fit::nsga2::{BinaryCrossover, Encoding, Nsga2};
 use crate::fit::problem::Problem;
@@ -38,9 +39,8 @@ pub struct FitArgs {
     /// Mass in kg, for force-driven records.
     #[arg(long)]
     pub mass: Option<f64>,
-    /// Sample rate in Hz, for records without a time column.
-    #[arg(long)]
-    pub sample_rate: Option<f64>,
+    #[command(flatten)]
+    pub read: ReadArgs,
     /// Write the fitted parameters (a parameter file) here.
     #[arg(long)]
     pub out: Option<PathBuf>,
@@ -140,11 +140,17 @@ impl Progress for Bar {
 }
 
 /// Reads a record for fitting.
-pub fn load(path: &PathBuf, sample_rate: Option<f64>, mass: Option<f64>) -> Result<Experiment> {
-    let mut opts = ReadOptions::default();
-    if let Some(hz) = sample_rate {
-        opts = opts.sample_rate(hz);
-    }
+pub fn load(path: &PathBuf, read: &ReadArgs, mass: Option<f64>) -> Result<Experiment> {
+    load_timed(path, read, mass).map(|(exp, _)| exp)
+}
+
+/// Reads a record for fitting, with its sample times if it has any.
+pub fn load_timed(
+    path: &PathBuf,
+    read: &ReadArgs,
+    mass: Option<f64>,
+) -> Result<(Experiment, Option<Vec<f64>>)> {
+    let mut opts = read.options();
     // A mass means the oscillator of eq. 3.3: the force is the input, also
     // in records whose columns would default to a displacement input.
     if mass.is_some() {
@@ -154,7 +160,8 @@ pub fn load(path: &PathBuf, sample_rate: Option<f64>, mass: Option<f64>) -> Resu
     for n in record.notices() {
         eprintln!("note: {n}");
     }
-    Experiment::from_record(&record, mass)
+    let time = record.time().map(<[f64]>::to_vec);
+    Ok((Experiment::from_record(&record, mass)?, time))
 }
 
 /// The fit as a parameter file with its `fit` metadata.
@@ -202,7 +209,7 @@ pub fn run(args: FitArgs) -> Result<()> {
     if args.params.is_some() {
         bail!("--params (a start file) is for --model {PHM_MODEL}");
     }
-    let exp = load(&args.data, args.sample_rate, args.mass)?;
+    let exp = load(&args.data, &args.read, args.mass)?;
     let problem =
         Problem::new(model, exp, &args.fix).with_context(|| args.data.display().to_string())?;
     if problem.dim() == 0 {

@@ -1,5 +1,6 @@
 //! The `hyst` command line: one module per verb.
 
+pub mod columns;
 pub mod diagnose;
 pub mod discover;
 pub mod export;

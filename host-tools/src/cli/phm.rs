@@ -138,7 +138,6 @@ pub fn fit(args: &FitArgs) -> Result<()> {
         (args.mass.is_some(), "--mass"),
         (args.pareto.is_some(), "--pareto"),
         (args.bits.is_some(), "--bits"),
-        (args.sample_rate.is_some(), "--sample-rate"),
     ] {
         if given {
             bail!("{name} is for the Bouc-Wen fits; the PHM fit takes a twist-driven record");
@@ -154,7 +153,7 @@ pub fn fit(args: &FitArgs) -> Result<()> {
     let (tu, mu) = start_file
         .as_ref()
         .map_or((Unit::Degree, Unit::KilonewtonMetre), |f| f.data_units);
-    let record = data::read(&args.data, &ReadOptions::default())?;
+    let record = data::read(&args.data, &args.read.options())?;
     for n in record.notices() {
         eprintln!("note: {n}");
     }

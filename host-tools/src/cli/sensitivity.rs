@@ -1,6 +1,7 @@
 //! `hyst sensitivity DATA --params FIT.json`: one-at-a-time sensitivity of
 //! the fitted model (thesis section 3.5.3, Table 3.5, Fig. 3.7).
 
+use super::columns::ReadArgs;
 use super::fit::load;
 use crate::fit::problem::Problem;
 use crate::fit::sensitivity;
@@ -25,9 +26,8 @@ pub struct SensitivityArgs {
     /// Mass in kg, for force-driven records.
     #[arg(long)]
     pub mass: Option<f64>,
-    /// Sample rate in Hz, for records without a time column.
-    #[arg(long)]
-    pub sample_rate: Option<f64>,
+    #[command(flatten)]
+    pub read: ReadArgs,
     /// Changes from -50% to +50% in this many steps.
     #[arg(long, default_value_t = 11)]
     pub levels: usize,
@@ -43,7 +43,7 @@ pub struct SensitivityArgs {
 pub fn run(args: SensitivityArgs) -> Result<()> {
     let file = ParamFile::read(&args.params)?;
     let spec = file.spec(args.model)?;
-    let exp = load(&args.data, args.sample_rate, args.mass)?;
+    let exp = load(&args.data, &args.read, args.mass)?;
     let problem = Problem::new(spec, exp, &[]).with_context(|| args.data.display().to_string())?;
     file.build(spec, problem.par.dynamic)?;
     let values: BTreeMap<&str, f64> = file.values.iter().map(|(k, v)| (k.as_str(), *v)).collect();

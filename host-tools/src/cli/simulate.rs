@@ -5,8 +5,9 @@
 //! columns are `twist,torque,tangent,n_positive,n_negative` (see
 //! [`phm`](super::phm)).
 
+use super::columns::ReadArgs;
 use super::ModelArg;
-use crate::data::{self, Channel, ReadOptions};
+use crate::data::{self, Channel};
 use crate::model::Extras;
 use crate::model::{is_phm, ParamFile, PHM_MODEL};
 use crate::report::plots::{loop_overlay, Quantity, Trace};
@@ -44,9 +45,8 @@ pub struct SimulateArgs {
     /// file's `m` is used (such a file also selects the force drive).
     #[arg(long)]
     pub mass: Option<f64>,
-    /// Sample rate in Hz, for force histories without a time column.
-    #[arg(long)]
-    pub sample_rate: Option<f64>,
+    #[command(flatten)]
+    pub read: ReadArgs,
     /// PHM only: print one JSON object (units, peak torque, the columns)
     /// instead of the CSV (which then goes to `--out` only).
     #[arg(long)]
@@ -116,10 +116,7 @@ pub fn run(args: SimulateArgs) -> Result<()> {
     }
     let file = ParamFile::read(&args.params)?;
     let spec = file.spec(spec)?;
-    let mut opts = ReadOptions::default();
-    if let Some(hz) = args.sample_rate {
-        opts = opts.sample_rate(hz);
-    }
+    let mut opts = args.read.options();
     // A mass, or a fit of the oscillator (its file carries `m`), means the
     // force drives.
     if args.mass.is_some() || file.values.contains_key("m") {

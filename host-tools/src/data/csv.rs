@@ -374,7 +374,7 @@ impl Header<'_> {
                     return Err(self.err(
                         b + 1,
                         format!(
-                            "columns '{}' ({}) and '{}' ({}) both look like {role}: choose one with the read options",
+                            "columns '{}' ({}) and '{}' ({}) both look like {role}: choose one with the read options (`hyst ... --{role} COLUMN[:UNIT]`)",
                             self.fields[*a].text,
                             a + 1,
                             self.fields[*b].text,
@@ -419,7 +419,7 @@ fn missing_column(file: &Path, line: usize, channel: Channel, header: &[HeaderFi
         line,
         1,
         format!(
-            "expected a {channel} column (named {}, or with a {} or {} unit, or given the role in the read options), found columns {}",
+            "expected a {channel} column (named {}, or with a {} or {} unit, or given the role in the read options: `hyst ... --{channel} COLUMN[:UNIT]`), found columns {}",
             names.join(", "),
             channel.quantity(),
             channel.torsion_quantity(),

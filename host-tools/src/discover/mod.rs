@@ -8,6 +8,9 @@
 //! * [`signature`]: what each missing effect leaves in the residual.
 //! * [`suspects`]: every candidate effect added and refitted, ranked by
 //!   delta-BIC, significant or not, with a sentence of evidence.
+//! * [`rate`]: rate dependence, which no effect of the library models, looked
+//!   for in the residual so that the diagnosis names it rather than blaming
+//!   an effect it has.
 //! * [`ladder`]: the loop, adding the strongest significant effect until none
 //!   is left.
 //! * [`synthetic`]: lab-like records with hidden effects for testing all of
@@ -16,6 +19,7 @@
 pub mod diagnosis;
 pub mod ladder;
 pub mod page;
+pub mod rate;
 pub mod signature;
 pub mod suspects;
 pub mod synthetic;

@@ -62,7 +62,8 @@ fn malformed_csv_table() {
             d.clone(),
             "nodisp.csv:1:1: expected a displacement column (named displacement, disp, drift, \
              strain, deformation, deflection, delta, twist, rotation, angle, or with a length or \
-             angle unit, or given the role in the read options), found columns 'a', 'b'",
+             angle unit, or given the role in the read options: `hyst ... --displacement \
+             COLUMN[:UNIT]`), found columns 'a', 'b'",
         ),
         (
             "noforce.csv",
@@ -70,7 +71,7 @@ fn malformed_csv_table() {
             ReadOptions::default().input(Channel::Force),
             "noforce.csv:1:1: expected a force column (named force, load, stress, shear, f, v, \
              torque, moment, or with a force or torque unit, or given the role in the read \
-             options), found columns 'displacement (mm)', 'b'",
+             options: `hyst ... --force COLUMN[:UNIT]`), found columns 'displacement (mm)', 'b'",
         ),
         (
             "unit.csv",
@@ -159,7 +160,8 @@ fn malformed_csv_table() {
             "disp (mm),drift (mm),force (kN)\n0,0,0\n".into(),
             d.clone(),
             "ambiguous.csv:1:2: columns 'disp (mm)' (1) and 'drift (mm)' (2) both look like \
-             displacement: choose one with the read options",
+             displacement: choose one with the read options (`hyst ... --displacement \
+             COLUMN[:UNIT]`)",
         ),
         (
             "option.csv",

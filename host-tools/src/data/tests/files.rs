@@ -235,7 +235,8 @@ fn mr_damper_needs_roles_and_units() {
     assert_eq!(
         e.to_string(),
         format!(
-            "{}:1:7: columns 'V' (6) and 'F' (7) both look like force: choose one with the read options",
+            "{}:1:7: columns 'V' (6) and 'F' (7) both look like force: choose one with the read \
+             options (`hyst ... --force COLUMN[:UNIT]`)",
             path.display()
         )
     );

@@ -1,0 +1,192 @@
+//! The read options of the command line: which column of a CSV record is the
+//! displacement, the force or the time, in which unit, and what to skip.
+//! Every verb that reads a record takes them, so a file whose header the
+//! readers cannot interpret alone (no units, two force-like columns, ...) is
+//! read the same way by `fit`, `diagnose`, `discover`, `sensitivity` and
+//! `simulate`.
+
+use crate::data::{ColumnRef, ReadOptions, Role, Unit};
+use anyhow::{anyhow, bail, Result};
+use clap::Args;
+
+/// A column named on the command line, with an optional unit:
+/// `D`, `D:cm`, `2`, `2:mm`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ColumnArg {
+    /// The column, by header text or 1-based number.
+    pub column: ColumnRef,
+    /// The unit its values are in, replacing the file's.
+    pub unit: Option<Unit>,
+}
+
+/// Parses `COLUMN[:UNIT]`: the text after the last `:` is the unit, which must
+/// be one the readers know; a column given as a number counts from 1.
+pub fn parse_column(text: &str) -> Result<ColumnArg> {
+    let (name, unit) = match text.rsplit_once(':') {
+        Some((name, unit)) => {
+            let parsed = Unit::parse(unit).ok_or_else(|| {
+                anyhow!(
+                    "`{text}`: expected COLUMN or COLUMN:UNIT, and `{unit}` is not a unit the \
+                     readers know (mm, cm, m, in, N, kN, MN, kip, lbf, s, ms, deg, rad, kN m, N m)"
+                )
+            })?;
+            (name, Some(parsed))
+        }
+        None => (text, None),
+    };
+    let name = name.trim();
+    if name.is_empty() {
+        bail!("`{text}`: expected a column name or number before the unit");
+    }
+    let column = match name.parse::<usize>() {
+        Ok(0) => bail!("`{text}`: column numbers count from 1"),
+        Ok(k) => ColumnRef::Number(k),
+        Err(_) => ColumnRef::Name(name.to_string()),
+    };
+    Ok(ColumnArg { column, unit })
+}
+
+fn parse_column_ref(text: &str) -> Result<ColumnRef> {
+    let c = parse_column(text)?;
+    if c.unit.is_some() {
+        bail!("`{text}`: a column that is not read takes no unit");
+    }
+    Ok(c.column)
+}
+
+/// How to read the record (CSV; a JSON layout fixes its columns).
+#[derive(Clone, Debug, Default, Args)]
+pub struct ReadArgs {
+    /// Sample rate in Hz: sample k is at k / rate (for records without a
+    /// time column, or to replace a jittery one).
+    #[arg(long)]
+    pub sample_rate: Option<f64>,
+    /// Read this column as the displacement (header text or 1-based number),
+    /// optionally in a unit that replaces the file's: `--displacement D:cm`.
+    #[arg(long, value_name = "COLUMN[:UNIT]", value_parser = parse_column)]
+    pub displacement: Option<ColumnArg>,
+    /// Read this column as the force: `--force F:N`.
+    #[arg(long, value_name = "COLUMN[:UNIT]", value_parser = parse_column)]
+    pub force: Option<ColumnArg>,
+    /// Read this column as the time: `--time t:s`.
+    #[arg(long, value_name = "COLUMN[:UNIT]", value_parser = parse_column)]
+    pub time: Option<ColumnArg>,
+    /// Do not read this column (one the header suggests wrongly); repeatable.
+    #[arg(long, value_name = "COLUMN", value_parser = parse_column_ref)]
+    pub ignore: Vec<ColumnRef>,
+    /// Skip this many leading data rows (each is reported).
+    #[arg(long, default_value_t = 0)]
+    pub skip_rows: usize,
+}
+
+impl ReadArgs {
+    /// The read options these arguments ask for.
+    pub fn options(&self) -> ReadOptions {
+        let mut opts = ReadOptions::default().skip_rows(self.skip_rows);
+        if let Some(hz) = self.sample_rate {
+            opts = opts.sample_rate(hz);
+        }
+        for (arg, role) in [
+            (&self.displacement, Role::Displacement),
+            (&self.force, Role::Force),
+            (&self.time, Role::Time),
+        ] {
+            if let Some(c) = arg {
+                opts = opts.role(c.column.clone(), role);
+                if let Some(unit) = c.unit {
+                    opts = opts.unit(c.column.clone(), unit);
+                }
+            }
+        }
+        for c in &self.ignore {
+            opts = opts.role(c.clone(), Role::Ignore);
+        }
+        opts
+    }
+
+    /// Whether any option other than the defaults was given (for verbs that
+    /// read records whose layout admits none).
+    pub fn given(&self) -> Option<&'static str> {
+        [
+            (self.sample_rate.is_some(), "--sample-rate"),
+            (self.displacement.is_some(), "--displacement"),
+            (self.force.is_some(), "--force"),
+            (self.time.is_some(), "--time"),
+            (!self.ignore.is_empty(), "--ignore"),
+            (self.skip_rows > 0, "--skip-rows"),
+        ]
+        .into_iter()
+        .find_map(|(given, name)| given.then_some(name))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn columns_parse_by_name_number_and_unit() {
+        assert_eq!(
+            parse_column("D:cm").unwrap(),
+            ColumnArg {
+                column: ColumnRef::Name("D".into()),
+                unit: Some(Unit::Centimetre)
+            }
+        );
+        assert_eq!(
+            parse_column("2").unwrap(),
+            ColumnArg {
+                column: ColumnRef::Number(2),
+                unit: None
+            }
+        );
+        assert_eq!(
+            parse_column("Lead Actuator Force :kN").unwrap().column,
+            ColumnRef::Name("Lead Actuator Force".into())
+        );
+    }
+
+    #[test]
+    fn bad_columns_say_what_was_expected() {
+        let e = parse_column("F:newtonz").unwrap_err().to_string();
+        assert!(e.contains("`newtonz` is not a unit"), "{e}");
+        let e = parse_column("0").unwrap_err().to_string();
+        assert!(e.contains("count from 1"), "{e}");
+        let e = parse_column(":mm").unwrap_err().to_string();
+        assert!(e.contains("expected a column name"), "{e}");
+        let e = parse_column_ref("V:cm").unwrap_err().to_string();
+        assert!(e.contains("takes no unit"), "{e}");
+    }
+
+    #[test]
+    fn options_carry_roles_units_and_skips() {
+        let args = ReadArgs {
+            sample_rate: Some(3004.8),
+            displacement: Some(parse_column("D:cm").unwrap()),
+            force: Some(parse_column("F:N").unwrap()),
+            ignore: vec![ColumnRef::Name("V".into())],
+            skip_rows: 1,
+            ..ReadArgs::default()
+        };
+        let o = args.options();
+        assert_eq!(o.sample_rate_hz, Some(3004.8));
+        assert_eq!(o.skip_rows, 1);
+        assert_eq!(
+            o.roles,
+            vec![
+                (ColumnRef::Name("D".into()), Role::Displacement),
+                (ColumnRef::Name("F".into()), Role::Force),
+                (ColumnRef::Name("V".into()), Role::Ignore),
+            ]
+        );
+        assert_eq!(
+            o.units,
+            vec![
+                (ColumnRef::Name("D".into()), Unit::Centimetre),
+                (ColumnRef::Name("F".into()), Unit::Newton),
+            ]
+        );
+        assert_eq!(args.given(), Some("--sample-rate"));
+        assert_eq!(ReadArgs::default().given(), None);
+    }
+}
