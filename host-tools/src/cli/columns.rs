@@ -103,21 +103,6 @@ impl ReadArgs {
         }
         opts
     }
-
-    /// Whether any option other than the defaults was given (for verbs that
-    /// read records whose layout admits none).
-    pub fn given(&self) -> Option<&'static str> {
-        [
-            (self.sample_rate.is_some(), "--sample-rate"),
-            (self.displacement.is_some(), "--displacement"),
-            (self.force.is_some(), "--force"),
-            (self.time.is_some(), "--time"),
-            (!self.ignore.is_empty(), "--ignore"),
-            (self.skip_rows > 0, "--skip-rows"),
-        ]
-        .into_iter()
-        .find_map(|(given, name)| given.then_some(name))
-    }
 }
 
 #[cfg(test)]
@@ -186,7 +171,5 @@ mod tests {
                 (ColumnRef::Name("F".into()), Unit::Newton),
             ]
         );
-        assert_eq!(args.given(), Some("--sample-rate"));
-        assert_eq!(ReadArgs::default().given(), None);
     }
 }
