@@ -25,9 +25,11 @@ pub fn parse_column(text: &str) -> Result<ColumnArg> {
     let (name, unit) = match text.rsplit_once(':') {
         Some((name, unit)) => {
             let parsed = Unit::parse(unit).ok_or_else(|| {
+                let known: Vec<_> = Unit::ALL.iter().map(|u| u.symbol()).collect();
                 anyhow!(
                     "`{text}`: expected COLUMN or COLUMN:UNIT, and `{unit}` is not a unit the \
-                     readers know (mm, cm, m, in, N, kN, MN, kip, lbf, s, ms, deg, rad, kN m, N m)"
+                     readers know ({})",
+                    known.join(", ")
                 )
             })?;
             (name, Some(parsed))

@@ -30,6 +30,7 @@
 
 use super::diagnosis::Diagnosis;
 use super::suspects::{effective_n, SIGNIFICANT_BIC};
+use nalgebra::{DMatrix, DVector};
 use serde::Serialize;
 
 /// Smallest share of the squared error a viscous term must remove to be
@@ -82,52 +83,19 @@ fn velocity(u: &[f64], t: &[f64]) -> Option<Vec<f64>> {
         .collect()
 }
 
-/// Least squares of `r` on the columns `x`: the residual sum of squares and
-/// the coefficients (`None` when the columns are dependent).
-fn regress<const K: usize>(x: &[[f64; K]], r: &[f64]) -> Option<(f64, [f64; K])> {
-    let mut a = [[0.0; K]; K];
-    let mut b = [0.0; K];
-    for (row, ri) in x.iter().zip(r) {
-        for i in 0..K {
-            b[i] += row[i] * ri;
-            for j in 0..K {
-                a[i][j] += row[i] * row[j];
-            }
-        }
+/// Least squares of `r` on the columns of `x`, by singular values as in the
+/// identifiability analysis: the residual sum of squares and the
+/// coefficients, or `None` when the columns are dependent (a singular value
+/// below 1e-6 of the largest, about a pivot below 1e-12 in the normal
+/// equations).
+fn regress(x: &DMatrix<f64>, r: &DVector<f64>) -> Option<(f64, DVector<f64>)> {
+    let svd = x.clone().svd(true, true);
+    let tol = 1e-6 * svd.singular_values.max();
+    if svd.rank(tol) < x.ncols() {
+        return None;
     }
-    // Gaussian elimination with partial pivoting.
-    let scale = (0..K).map(|i| a[i][i]).fold(0.0, f64::max);
-    for c in 0..K {
-        let p = (c..K).max_by(|&i, &j| a[i][c].abs().total_cmp(&a[j][c].abs()))?;
-        let pivot = a[p][c].abs();
-        if pivot.is_nan() || pivot <= 1e-12 * scale {
-            return None;
-        }
-        a.swap(c, p);
-        b.swap(c, p);
-        let top = a[c];
-        for i in c + 1..K {
-            let f = a[i][c] / top[c];
-            for (x, t) in a[i][c..].iter_mut().zip(&top[c..]) {
-                *x -= f * t;
-            }
-            b[i] -= f * b[c];
-        }
-    }
-    let mut coef = [0.0; K];
-    for c in (0..K).rev() {
-        let s: f64 = (c + 1..K).map(|j| a[c][j] * coef[j]).sum();
-        coef[c] = (b[c] - s) / a[c][c];
-    }
-    let rss = x
-        .iter()
-        .zip(r)
-        .map(|(row, ri)| {
-            let fit: f64 = row.iter().zip(&coef).map(|(x, c)| x * c).sum();
-            (ri - fit).powi(2)
-        })
-        .sum();
-    Some((rss, coef))
+    let coef = svd.solve(r, tol).ok()?;
+    Some(((r - x * &coef).norm_squared(), coef))
 }
 
 /// Looks for rate dependence in the residual of `d` (a displacement-driven
@@ -135,7 +103,6 @@ fn regress<const K: usize>(x: &[[f64; K]], r: &[f64]) -> Option<(f64, [f64; K])>
 /// record has no usable time base or the loading never changes speed.
 pub fn check(d: &Diagnosis, time: &[f64], nrmse: f64) -> Option<RateCheck> {
     let v = velocity(&d.displacement, time)?;
-    let r = &d.residual;
     let s = |v: f64| {
         if v > 0.0 {
             1.0
@@ -155,27 +122,26 @@ pub fn check(d: &Diagnosis, time: &[f64], nrmse: f64) -> Option<RateCheck> {
             Some(*a)
         })
         .collect();
-    let nuisance = |i: usize| {
-        let d = s(v[i]);
-        [1.0, d, d * envelope[i], u[i]]
-    };
-    let base: Vec<[f64; 4]> = (0..v.len()).map(nuisance).collect();
-    let full: Vec<[f64; 5]> = (0..v.len())
-        .map(|i| {
-            let [a, b, c, e] = nuisance(i);
-            [a, b, c, e, v[i]]
-        })
-        .collect();
-    let (rss_base, _) = regress(&base, r)?;
-    let (rss_full, coef) = regress(&full, r)?;
-    let total: f64 = r.iter().map(|x| x * x).sum();
+    // Columns: the four nuisance terms, then the velocity.
+    let x = DMatrix::from_row_iterator(
+        v.len(),
+        5,
+        v.iter().zip(u).zip(&envelope).flat_map(|((&v, &u), &a)| {
+            let dir = s(v);
+            [1.0, dir, dir * a, u, v]
+        }),
+    );
+    let r = DVector::from_column_slice(&d.residual);
+    let (rss_base, _) = regress(&x.columns(0, 4).into_owned(), &r)?;
+    let (rss_full, coef) = regress(&x, &r)?;
+    let total = r.norm_squared();
     if !(total > 0.0 && rss_full > 0.0) {
         return None;
     }
     let gain = (rss_base - rss_full).max(0.0);
     let share = gain / total;
     let floor = d.segmentation.cycles().half_cycles().len();
-    let n_eff = effective_n(r, 1, floor);
+    let n_eff = effective_n(&d.residual, 1, floor);
     let delta_bic = n_eff * (rss_full / rss_base).ln() + n_eff.ln();
     let nrmse_with = nrmse * (1.0 - share).max(0.0).sqrt();
     // The model's force is measured + r, so the missing force is -r ≈ -c v.
@@ -186,12 +152,12 @@ pub fn check(d: &Diagnosis, time: &[f64], nrmse: f64) -> Option<RateCheck> {
     let speeds: Vec<f64> = v.iter().map(|v| v.abs()).filter(|v| *v > 0.0).collect();
     let (lo, hi) = quantiles(&speeds);
     let evidence = format!(
-        "Beyond the loading direction and amplitude, the residual follows the velocity: a \
-         viscous force c v with c = {viscous:.4e} (force per displacement/s; fitted to the \
-         residual of the rate-independent fit, which has absorbed part of any dashpot into its \
-         loop, so a lower bound) takes the NRMSE from {nrmse:.4} to {nrmse_with:.4} ({:.1}% of the squared error; delta-BIC \
-         {delta_bic:+.0}). The speed of loading ranges from {lo:.3e} to {hi:.3e} (10th to 90th \
-         percentile). {}",
+        "Fitted beyond the loading direction and amplitude, a viscous force c v with \
+         c = {viscous:.4e} (force per displacement/s; fitted to the residual of the \
+         rate-independent fit, which has absorbed part of any dashpot into its loop, so a lower \
+         bound) takes the NRMSE from {nrmse:.4} to {nrmse_with:.4} ({:.1}% of the squared \
+         error; delta-BIC {delta_bic:+.0}). The speed of loading ranges from {lo:.3e} to \
+         {hi:.3e} (10th to 90th percentile). {}",
         100.0 * share,
         if significant {
             "No effect in the library grows with speed: the models here are rate independent, so \
@@ -233,20 +199,22 @@ mod tests {
 
     #[test]
     fn regression_recovers_exact_coefficients() {
-        let x: Vec<[f64; 3]> = (0..50)
-            .map(|i| {
+        let x = DMatrix::from_row_iterator(
+            50,
+            3,
+            (0..50).flat_map(|i| {
                 let v = (i as f64 * 0.37).sin() * (1.0 + i as f64 / 10.0);
                 [1.0, v.signum(), v]
-            })
-            .collect();
-        let r: Vec<f64> = x.iter().map(|x| 0.5 - 2.0 * x[1] + 3.0 * x[2]).collect();
+            }),
+        );
+        let r = DVector::from_fn(50, |i, _| 0.5 - 2.0 * x[(i, 1)] + 3.0 * x[(i, 2)]);
         let (rss, c) = regress(&x, &r).unwrap();
         assert!(rss < 1e-20, "{rss}");
         for (got, want) in c.iter().zip([0.5, -2.0, 3.0]) {
             assert!((got - want).abs() < 1e-10, "{c:?}");
         }
         // Dependent columns are refused, not solved.
-        let dep: Vec<[f64; 2]> = x.iter().map(|x| [x[2], 2.0 * x[2]]).collect();
+        let dep = DMatrix::from_fn(50, 2, |i, j| (j + 1) as f64 * x[(i, 2)]);
         assert!(regress(&dep, &r).is_none());
     }
 
