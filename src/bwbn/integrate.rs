@@ -8,9 +8,11 @@
 //! ratio is at most 1, and the next size follows from the largest ratio `r` as
 //! `h * 0.9 r^(-1/q)` (`q` = order of the estimate + 1), limited to [0.1, 5].
 //! The size proposed at the end of one increment is kept in the state and
-//! tried first on the next one. Both pairs are "first same as last": the last
-//! stage is the derivative at the new point, which is reused as the first stage
-//! of the next sub-step and gives the consistent tangent for free.
+//! tried first on the next one (unless it is below the new increment's
+//! smallest allowed sub-step, as after a much shorter increment). Both pairs
+//! are "first same as last": the last stage is the derivative at the new
+//! point, which is reused as the first stage of the next sub-step and gives
+//! the consistent tangent for free.
 //!
 //! * [`Method::Dp54`]: Dormand-Prince 5(4), 6 derivative evaluations a sub-step;
 //!   the host default.
@@ -340,8 +342,11 @@ fn adaptive<S: Scalar, const N: usize, P: Pair>(
     let mut x = S::ZERO;
     let mut y = y0;
     let mut dy = dy0;
-    let mut h = if h_try > S::ZERO { h_try } else { len };
     let h_min = S::EPSILON * S::lit(16.0) * len;
+    // A size carried over from a much shorter increment may already be below
+    // this one's resolution: start from the whole increment instead, which
+    // the controller then cuts to size.
+    let mut h = if h_try > h_min { h_try } else { len };
     let mut attempts = 0u32;
     // Why the last attempt failed, returned if the budget runs out.
     let mut failure = StepError::ToleranceNotMet;

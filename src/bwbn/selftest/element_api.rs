@@ -8,7 +8,10 @@
 //!   beyond the sub-step budget with [`StepError::ToleranceNotMet`], and
 //!   neither changes anything (not even a pending trial);
 //! * reset returns to the virgin state, from which the history repeats bit
-//!   for bit.
+//!   for bit;
+//! * the smallest increment the arithmetic can represent does not stall the
+//!   next, ordinary one (the sub-step size carried over from it is far below
+//!   the next increment's resolution).
 
 use super::history::{displacement, Set};
 use crate::bwbn::{Bwbn, Control, State};
@@ -228,6 +231,44 @@ fn reset_returns_to_virgin<S: Scalar>() {
         el.commit();
         fresh.commit();
     }
+}
+
+/// From the virgin state, one step of the smallest representable increment
+/// (`EPSILON`: 2.2e-16 mm in `f64`, 1.2e-7 mm in `f32`, one Q15.16 step)
+/// and then a step to 1 mm gives the force of a single step to 1 mm, to the
+/// arithmetic's accuracy bound of the reference history. (The sub-step
+/// size carried over from the tiny step, at most five times it, was once
+/// tried first and was already below the 1 mm step's smallest allowed
+/// sub-step, 16 `EPSILON` of its length, so the step was refused.)
+fn tiny_then_ordinary<S: Scalar>(bound: f64) {
+    let params = Set::All.params();
+    let mut direct = Bwbn::<S>::new(params);
+    let mut via_tiny = Bwbn::<S>::new(params);
+    let target = S::ONE;
+    let expected = direct.set_trial(target);
+    let tiny = via_tiny.set_trial(S::EPSILON);
+    via_tiny.commit();
+    let got = via_tiny.set_trial(target);
+    match (expected, tiny, got) {
+        (Ok(a), Ok(_), Ok(b)) => {
+            let (a, b) = (a.force.to_f64(), b.force.to_f64());
+            assert!(
+                (a - b).abs() <= bound * a.abs(),
+                "{}: force at 1 mm {} after a tiny step, {} directly",
+                S::NAME,
+                b,
+                a
+            );
+        }
+        other => panic!("{}: steps refused: {:?}", S::NAME, other),
+    }
+}
+
+/// A tiny increment does not stall the next one.
+pub fn tiny_increment() {
+    tiny_then_ordinary::<f64>(1e-6);
+    tiny_then_ordinary::<f32>(super::accuracy::F32_BOUND);
+    tiny_then_ordinary::<Fixed>(super::accuracy::FIXED_BOUND);
 }
 
 /// Trials never change the committed state; revert + same trial is

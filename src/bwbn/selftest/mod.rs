@@ -30,6 +30,10 @@ pub const CASES: &[Case] = &[
     ),
     ("bwbn::element::reset", element_api::reset),
     (
+        "bwbn::element::tiny_increment_does_not_stall",
+        element_api::tiny_increment,
+    ),
+    (
         "bwbn::limits::alpha_one_is_linear_elastic",
         limits::alpha_one_is_linear_elastic,
     ),
