@@ -5,6 +5,7 @@
 use super::columns::ReadArgs;
 use super::fit::{load_timed, parse_fix, Bar};
 use crate::discover::rate::{self, RateCheck};
+use crate::discover::slip::{self, SlipCheck};
 use crate::discover::{page, weigh, Diagnosis, Suspect, WeighOptions};
 use crate::fit::experiment::Drive;
 use crate::fit::problem::Problem;
@@ -109,17 +110,53 @@ pub fn initial_fit(
     Ok((problem, outcome, time))
 }
 
-/// Rate dependence in the residual of a displacement-driven fit of a record
-/// with sample times ([`rate::check`]).
-pub fn rate_check(
-    problem: &Problem,
-    outcome: &Outcome,
-    d: &Diagnosis,
-    time: Option<&[f64]>,
-) -> Option<RateCheck> {
-    match problem.exp.drive {
-        Drive::Displacement => rate::check(d, time?, outcome.scores.nrmse),
-        Drive::Force { .. } => None,
+/// What the record shows that no effect of the library models.
+#[derive(Clone, Debug, Default)]
+pub struct Beyond {
+    /// Rate dependence ([`rate::check`]): displacement-driven records with
+    /// sample times.
+    pub rate: Option<RateCheck>,
+    /// Slip or a gap ([`slip::check`]): displacement-driven records.
+    pub slip: Option<SlipCheck>,
+}
+
+impl Beyond {
+    /// Both checks on the fit `outcome` of `problem`, lined up as `d`.
+    pub fn check(
+        problem: &Problem,
+        outcome: &Outcome,
+        d: &Diagnosis,
+        time: Option<&[f64]>,
+    ) -> Self {
+        let rate = match (&problem.exp.drive, time) {
+            (Drive::Displacement, Some(t)) => rate::check(d, t, outcome.scores.nrmse),
+            _ => None,
+        };
+        Beyond {
+            rate,
+            slip: slip::check(d, &problem.exp.drive),
+        }
+    }
+
+    /// The checks that ran, as (name, significant, evidence).
+    fn found(&self) -> Vec<(&'static str, bool, &str)> {
+        let rate = self
+            .rate
+            .as_ref()
+            .map(|r| ("rate dependence", r.significant, r.evidence.as_str()));
+        let slip = self
+            .slip
+            .as_ref()
+            .map(|s| ("slip or gap", s.significant, s.evidence.as_str()));
+        rate.into_iter().chain(slip).collect()
+    }
+
+    /// Adds the checks to an HTML report.
+    pub fn section(&self, report: &mut Report) {
+        for (name, _, evidence) in self.found() {
+            report.section(&format!("Beyond the library: {name}"));
+            report.paragraph(evidence);
+        }
     }
 }
 
@@ -149,7 +186,7 @@ pub fn diagnosis_json(
     outcome: &Outcome,
     d: &Diagnosis,
     suspects: &[Suspect],
-    rate: Option<&RateCheck>,
+    beyond: &Beyond,
 ) -> Value {
     json!({
         "model": problem.par.spec.to_string(),
@@ -160,7 +197,8 @@ pub fn diagnosis_json(
         "places": d.places,
         "cycles": d.cycles,
         "suspects": suspects_json(suspects),
-        "rate_dependence": rate,
+        "rate_dependence": beyond.rate,
+        "slip": beyond.slip,
     })
 }
 
@@ -170,7 +208,7 @@ pub fn print_diagnosis(
     outcome: &Outcome,
     d: &Diagnosis,
     suspects: &[Suspect],
-    rate: Option<&RateCheck>,
+    beyond: &Beyond,
 ) {
     println!(
         "model {}: NRMSE {:.4} with {} parameters, total energy off by {:.1}%",
@@ -193,23 +231,18 @@ pub fn print_diagnosis(
         println!("  {}. {:<22} {mark}", i + 1, s.effect.name());
         println!("     {}", s.evidence);
     }
-    if let Some(r) = rate {
+    let found = beyond.found();
+    if !found.is_empty() {
         println!("beyond the library's effects:");
-        let mark = if r.significant {
+    }
+    for (name, significant, evidence) in found {
+        let mark = if significant {
             "SIGNIFICANT"
         } else {
             "not significant"
         };
-        println!("  rate dependence           {mark}");
-        println!("     {}", r.evidence);
-    }
-}
-
-/// Adds the rate check to an HTML report.
-pub fn rate_section(report: &mut Report, rate: Option<&RateCheck>) {
-    if let Some(r) = rate {
-        report.section("Beyond the library: rate dependence");
-        report.paragraph(&r.evidence);
+        println!("  {name:<25} {mark}");
+        println!("     {evidence}");
     }
 }
 
@@ -220,7 +253,7 @@ pub fn run(args: DiagnoseArgs) -> Result<()> {
     let d = Diagnosis::new(&problem, &outcome)?;
     bar.status("weighing the candidate effects");
     let suspects = weigh(&problem, &outcome, &d, &args.common.weigh_options()?);
-    let rate = rate_check(&problem, &outcome, &d, time.as_deref());
+    let beyond = Beyond::check(&problem, &outcome, &d, time.as_deref());
     bar.finish();
     if let Some(path) = &args.common.report {
         let mut report = Report::new(&format!("Diagnosis of {}", args.common.data.display()));
@@ -236,7 +269,7 @@ pub fn run(args: DiagnoseArgs) -> Result<()> {
             &suspects,
             &units,
         )?;
-        rate_section(&mut report, rate.as_ref());
+        beyond.section(&mut report);
         report
             .write(path)
             .with_context(|| format!("{}: cannot write", path.display()))?;
@@ -245,15 +278,11 @@ pub fn run(args: DiagnoseArgs) -> Result<()> {
         println!(
             "{}",
             serde_json::to_string_pretty(&diagnosis_json(
-                &problem,
-                &outcome,
-                &d,
-                &suspects,
-                rate.as_ref()
+                &problem, &outcome, &d, &suspects, &beyond
             ))?
         );
     } else {
-        print_diagnosis(&problem, &outcome, &d, &suspects, rate.as_ref());
+        print_diagnosis(&problem, &outcome, &d, &suspects, &beyond);
     }
     Ok(())
 }

@@ -2,9 +2,7 @@
 //! significant effect, refit from the previous fit, repeat until nothing
 //! significant is left; then the ladder.
 
-use super::diagnose::{
-    diagnosis_json, initial_fit, print_diagnosis, rate_check, rate_section, Common,
-};
+use super::diagnose::{diagnosis_json, initial_fit, print_diagnosis, Beyond, Common};
 use super::fit::Bar;
 use crate::discover::{discover, page};
 use crate::fit::run::Progress;
@@ -47,7 +45,7 @@ pub fn run(args: DiscoverArgs) -> Result<()> {
         ));
     })?;
     let last = discovery.last();
-    let rate = rate_check(
+    let beyond = Beyond::check(
         &last.problem,
         &last.outcome,
         &last.diagnosis,
@@ -79,7 +77,7 @@ pub fn run(args: DiscoverArgs) -> Result<()> {
             &discovery,
             &units,
         )?;
-        rate_section(&mut report, rate.as_ref());
+        beyond.section(&mut report);
         report
             .write(path)
             .with_context(|| format!("{}: cannot write", path.display()))?;
@@ -90,7 +88,7 @@ pub fn run(args: DiscoverArgs) -> Result<()> {
             &last.outcome,
             &last.diagnosis,
             &last.suspects,
-            rate.as_ref(),
+            &beyond,
         );
         obj["ladder"] = json!(discovery.rungs);
         println!("{}", serde_json::to_string_pretty(&obj)?);
@@ -122,7 +120,7 @@ pub fn run(args: DiscoverArgs) -> Result<()> {
             &last.outcome,
             &last.diagnosis,
             &last.suspects,
-            rate.as_ref(),
+            &beyond,
         );
     }
     Ok(())

@@ -11,6 +11,8 @@
 //! * [`rate`]: rate dependence, which no effect of the library models, looked
 //!   for in the residual so that the diagnosis names it rather than blaming
 //!   an effect it has.
+//! * [`slip`]: slip or a gap, a plateau of zero force on reversal, which no
+//!   effect of the library models either and which pinching only resembles.
 //! * [`ladder`]: the loop, adding the strongest significant effect until none
 //!   is left.
 //! * [`synthetic`]: lab-like records with hidden effects for testing all of
@@ -21,6 +23,7 @@ pub mod ladder;
 pub mod page;
 pub mod rate;
 pub mod signature;
+pub mod slip;
 pub mod suspects;
 pub mod synthetic;
 

@@ -8,7 +8,8 @@
 //! strength, driven along a step-wise protocol (two cycles at each of 0.5, 1,
 //! 2, 3, 4, 6 and 8 mm, 60 samples a cycle) or an irregular earthquake-like
 //! path (peak 6 mm), with Gaussian noise on the measured displacement and
-//! force (two levels).
+//! force (two levels). [`record_with_gap`] puts the base behind a gap: slip,
+//! which no effect of the library models.
 
 use crate::data::{Irregular, Normal, Protocol, Shape};
 use crate::fit::experiment::{Drive, Experiment};
@@ -148,6 +149,11 @@ pub fn record(
         );
         el.commit();
     }
+    Ok(measured(&u, &f, noise, seed))
+}
+
+/// The record as a lab measures it: `u` and `f` with `noise` from `seed`.
+fn measured(u: &[f64], f: &[f64], noise: Noise, seed: u64) -> Experiment {
     let peak = f.iter().fold(0.0f64, |a, v| a.max(v.abs()));
     let mut gauss = Normal::new(seed);
     let u_meas = u
@@ -158,9 +164,84 @@ pub fn record(
         .iter()
         .map(|v| v + noise.force * peak * gauss.sample())
         .collect();
-    Ok(Experiment {
+    Experiment {
         input: u_meas,
         output: f_meas,
         drive: Drive::Displacement,
-    })
+    }
+}
+
+/// A record of the base model behind a gap: slip, an effect the library
+/// does not have (bars slipping in their anchorage, a bolt in an oversized
+/// hole, backlash). The base element sits in series with a slider that moves
+/// freely at zero force within `[-gap, gap]` (mm) and bears at its ends; it
+/// starts centred. On every reversal the element unloads to zero force, the
+/// slider crosses the gap at zero force, and the element loads again from
+/// there: a flat plateau of zero force `2 gap` long.
+pub fn record_with_gap(gap: f64, path_kind: Path, noise: Noise, seed: u64) -> Result<Experiment> {
+    if !(gap.is_finite() && gap >= 0.0) {
+        return Err(anyhow!("the gap must be a finite length >= 0, not {gap}"));
+    }
+    let (params, _) = ModelSpec::BW
+        .build(|n| {
+            if n == hysteresis::bwbn::ENERGY_LIMIT {
+                return Some(5000.0);
+            }
+            BASE.iter().find(|(k, _)| *k == n).map(|(_, v)| *v)
+        })
+        .map_err(|e| anyhow!("synthetic model: {e}"))?;
+    let tight = Control {
+        method: Method::Dp54,
+        tol: 1e-10,
+        max_substeps: 2000,
+    };
+    let mut el = Bwbn::new(params).with_control(tight);
+    let trial = |el: &mut Bwbn<f64>, y: f64| {
+        el.set_trial(y)
+            .map(|r| r.force)
+            .map_err(|e| anyhow!("synthetic record: {e}"))
+    };
+    let u = path(path_kind);
+    let mut f = Vec::with_capacity(u.len());
+    // The slider's position and the element's committed force.
+    let (mut slip, mut force) = (0.0f64, 0.0f64);
+    for &ui in &u {
+        let trial_force = trial(&mut el, ui - slip)?;
+        let bearing = (slip >= gap && trial_force >= 0.0) || (slip <= -gap && trial_force <= 0.0);
+        if bearing {
+            el.commit();
+            force = trial_force;
+            f.push(force);
+            continue;
+        }
+        // The element unloads to zero force first: bisect for that point
+        // between the committed displacement and the trial.
+        let y_committed = el.committed().u;
+        let mut zero = y_committed;
+        if force != 0.0 {
+            let (mut a, mut b) = (y_committed, ui - slip);
+            for _ in 0..80 {
+                let m = 0.5 * (a + b);
+                if trial(&mut el, m)?.signum() == force.signum() {
+                    a = m;
+                } else {
+                    b = m;
+                }
+            }
+            zero = 0.5 * (a + b);
+            trial(&mut el, zero)?;
+            el.commit();
+        }
+        // Then the slider moves, and bears again at the other end.
+        slip = (ui - zero).clamp(-gap, gap);
+        force = if (ui - zero).abs() <= gap {
+            0.0
+        } else {
+            let r = trial(&mut el, ui - slip)?;
+            el.commit();
+            r
+        };
+        f.push(force);
+    }
+    Ok(measured(&u, &f, noise, seed))
 }

@@ -1,0 +1,157 @@
+//! Slip, the other effect the library does not model: the diagnosis must name
+//! a plateau of zero force on reversal where the record has one, read its
+//! length, and stay silent on records without one, including those whose
+//! missing effect is pinching, the library effect slip resembles.
+//!
+//! Records: the synthetic base of `hyst::discover::synthetic` behind a gap
+//! (`record_with_gap`) or with a hidden library effect (`record`), along the
+//! step-wise and the earthquake-like paths, at both noise levels; and the
+//! shared records of `../shared/data/synthetic/` (an independent simulator).
+
+use hyst::discover::slip::{self, SlipCheck};
+use hyst::discover::synthetic::{record, record_with_gap, Noise, Path};
+use hyst::discover::Diagnosis;
+use hyst::fit::experiment::Experiment;
+use hyst::fit::problem::Problem;
+use hyst::fit::run::{self, Method, Quiet};
+use hyst::model::{EffectRef, ModelSpec};
+use hysteresis::bwbn::EffectKind;
+
+/// Fits `bw` to `exp` as `hyst diagnose` does and runs the slip check.
+fn check(exp: Experiment) -> SlipCheck {
+    check_with(ModelSpec::BW, exp)
+}
+
+fn check_with(spec: ModelSpec, exp: Experiment) -> SlipCheck {
+    let problem = Problem::new(spec, exp, &[]).unwrap();
+    let outcome = run::fit(&problem, Method::Auto, &problem.par.default_start(), &Quiet).unwrap();
+    let d = Diagnosis::new(&problem, &outcome).unwrap();
+    slip::check(&d, &problem.exp.drive).expect("half-cycles where the force changes sign")
+}
+
+const PATHS: [Path; 2] = [Path::StepWise, Path::Irregular(1)];
+
+#[test]
+fn a_gap_is_named_and_its_length_read() {
+    for gap in [0.5, 1.0] {
+        for (which, noise, seed) in [
+            (Path::StepWise, Noise::LOW, 1),
+            (Path::StepWise, Noise::HIGH, 2),
+            (Path::Irregular(1), Noise::LOW, 3),
+            (Path::Irregular(2), Noise::HIGH, 4),
+        ] {
+            let c = check(record_with_gap(gap, which, noise, seed).unwrap());
+            println!("gap {gap} {which:?} {noise:?}: {c:?}");
+            assert!(
+                c.significant,
+                "gap {gap}, {which:?}, {noise:?}: {}",
+                c.evidence
+            );
+            // The plateau is the slider crossing the gap: 2 gap long, less
+            // the samples where noise lifts the force out of the band.
+            assert!(
+                (0.8 * 2.0 * gap..=1.1 * 2.0 * gap).contains(&c.plateau),
+                "gap {gap}, {which:?}, {noise:?}: plateau {} against {}",
+                c.plateau,
+                2.0 * gap
+            );
+        }
+    }
+}
+
+#[test]
+fn no_gap_no_slip() {
+    for which in PATHS {
+        for (noise, seed) in [(Noise::LOW, 5), (Noise::HIGH, 6)] {
+            let c = check(record_with_gap(0.0, which, noise, seed).unwrap());
+            println!("no gap {which:?} {noise:?}: {c:?}");
+            assert!(!c.significant, "{which:?}, {noise:?}: {}", c.evidence);
+        }
+    }
+}
+
+#[test]
+fn hidden_library_effects_are_not_taken_for_slip() {
+    for kind in [
+        EffectKind::Pinching,
+        EffectKind::StrengthDegradation,
+        EffectKind::StiffnessDegradation,
+        EffectKind::Asymmetry,
+    ] {
+        for which in PATHS {
+            let c = check(record(&[kind], which, Noise::HIGH, 7).unwrap());
+            println!("{kind:?} {which:?}: {c:?}");
+            assert!(!c.significant, "{kind:?}, {which:?}: {}", c.evidence);
+        }
+    }
+}
+
+fn shared(name: &str) -> Experiment {
+    let path = format!(
+        "{}/../../shared/data/synthetic/{name}",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    let rec = hyst::data::read(&path, &Default::default()).unwrap();
+    Experiment::from_record(&rec, None).unwrap()
+}
+
+#[test]
+fn the_shared_synthetic_records_have_no_slip() {
+    for name in ["s1_hidden_pinching.csv", "s2_hidden_degradation.csv"] {
+        let c = check(shared(name));
+        println!("{name}: {c:?}");
+        assert!(!c.significant, "{name}: {}", c.evidence);
+    }
+    // With the missing effect added, the model's band is the measured one.
+    let pinched = ModelSpec::BW.with(EffectRef::Builtin(EffectKind::Pinching));
+    let c = check_with(pinched, shared("s1_hidden_pinching.csv"));
+    println!("s1 with pinching: {c:?}");
+    assert!(!c.significant && c.excess.abs() < 0.01, "{}", c.evidence);
+}
+
+#[test]
+fn hyst_diagnose_names_the_gap_in_text_and_json() {
+    let exp = record_with_gap(0.5, Path::StepWise, Noise::LOW, 8).unwrap();
+    let dir = std::env::temp_dir().join(format!("hyst-slip-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let csv = dir.join("gap.csv");
+    let rows: String = exp
+        .input
+        .iter()
+        .zip(&exp.output)
+        .map(|(u, f)| format!("{u},{f}\n"))
+        .collect();
+    std::fs::write(&csv, format!("displacement (mm),force (kN)\n{rows}")).unwrap();
+    let run = |json: bool| {
+        let mut cmd = std::process::Command::new(env!("CARGO_BIN_EXE_hyst"));
+        cmd.args(["diagnose", csv.to_str().unwrap(), "--model", "bw"]);
+        cmd.args(["--candidates", "pinching"]);
+        if json {
+            cmd.arg("--json");
+        }
+        let out = cmd.output().unwrap();
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        String::from_utf8(out.stdout).unwrap()
+    };
+    let text = run(false);
+    assert!(
+        text.contains("beyond the library's effects:")
+            && text
+                .lines()
+                .any(|l| l.trim() == "slip or gap               SIGNIFICANT"),
+        "{text}"
+    );
+    let v: serde_json::Value = serde_json::from_str(&run(true)).unwrap();
+    assert_eq!(
+        v["slip"]["significant"],
+        serde_json::Value::Bool(true),
+        "{v}"
+    );
+    let plateau = v["slip"]["plateau"].as_f64().unwrap();
+    assert!((0.8..=1.1).contains(&plateau), "{plateau}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
