@@ -208,3 +208,48 @@ fn phm_tables_and_export_errors() {
     ]));
     assert!(e.contains("big.json: the parameters do not survive rounding to q16: element 0: k0 must be a finite number"), "{e}");
 }
+
+#[test]
+fn the_precision_history_takes_the_read_options() {
+    // One history, 0 -> 6 -> -6 -> 6 mm in 0.1 mm steps, written twice: in mm
+    // under a header the reader knows, and in cm under a bare `D` column next
+    // to a force-like `V` that the reader has to be told to ignore.
+    let mut u = vec![0.0f64];
+    for target in [6.0, -6.0, 6.0] {
+        while (u[u.len() - 1] - target).abs() > 1e-9 {
+            let last = u[u.len() - 1];
+            u.push(last + 0.1 * (target - last).signum());
+        }
+    }
+    let mm: String = u.iter().map(|v| format!("{v:.4}\n")).collect();
+    let cm: String = u.iter().map(|v| format!("{:.5},1\n", v / 10.0)).collect();
+    let in_mm = write("h-mm.csv", &format!("displacement (mm)\n{mm}"));
+    let in_cm = write("h-cm.csv", &format!("D,V\n{cm}"));
+    let a = write("h.json", ALL_FOUR);
+    let export = |history: &str, read: &[&str]| {
+        let mut args = vec!["export", &a, "--format", "bin", "--scalar", "q16"];
+        args.extend(["--history", history]);
+        args.extend(read);
+        let report = stderr(&ok(hyst(&args)));
+        report
+            .lines()
+            .find_map(|l| l.trim().strip_prefix("worst: ").map(str::to_string))
+            .unwrap_or_else(|| panic!("no precision line: {report}"))
+    };
+    let reference = export(&in_mm, &[]);
+    let told = export(&in_cm, &["--displacement", "D:cm", "--ignore", "V"]);
+    assert_eq!(told, reference);
+    // Not told, the bare columns are refused rather than guessed, before a
+    // table is written.
+    let out = tmp("untold.bin");
+    let out_arg = out.to_str().unwrap();
+    let args = ["export", &a, "--format", "bin", "--scalar", "q16"];
+    let o = hyst(&[&args[..], &["--history", &in_cm, "--out", out_arg]].concat());
+    assert!(!o.status.success(), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("--displacement COLUMN"),
+        "{}",
+        stderr(&o)
+    );
+    assert!(!out.exists(), "a table was written for a failed export");
+}

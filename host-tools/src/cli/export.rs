@@ -3,7 +3,8 @@
 //! verified with the device's loader. Exporting in `f32` or Q15.16 prints
 //! the precision lost against the `f64` fit.
 
-use crate::data::{self, Channel, ReadOptions};
+use super::columns::ReadArgs;
+use crate::data::{self, Channel};
 use crate::export::{self, precision, Format};
 use anyhow::{anyhow, Context, Result};
 use clap::Args;
@@ -36,6 +37,9 @@ pub struct ExportArgs {
     /// `displacement` column) instead of the reference protocol.
     #[arg(long)]
     pub history: Option<PathBuf>,
+    /// How to read the `--history` record, as for the other verbs.
+    #[command(flatten)]
+    pub read: ReadArgs,
 }
 
 fn parse_scalar(s: &str) -> Result<ScalarKind, String> {
@@ -45,6 +49,7 @@ fn parse_scalar(s: &str) -> Result<ScalarKind, String> {
 /// Runs `hyst export`.
 pub fn run(args: ExportArgs) -> Result<()> {
     let src = export::read(&args.fits)?;
+    let history = read_history(&args)?;
     let bytes = export::encode(&src, args.scalar)?;
     let header = *Table::parse(&bytes).map_err(|e| anyhow!("{e}"))?.header();
     let files: Vec<String> = args.fits.iter().map(|p| export::short(p)).collect();
@@ -78,9 +83,24 @@ pub fn run(args: ExportArgs) -> Result<()> {
     }
     eprintln!("{}", export::describe(&header));
     if args.scalar != ScalarKind::F64 {
-        report_precision(&args, &src, &bytes, &files)?;
+        report_precision(&args, &src, &bytes, &files, history.as_deref())?;
+    } else if history.is_some() {
+        eprintln!("note: --history measures what f32 or q16 lose against f64; f64 loses nothing, so it was not used");
     }
     Ok(())
+}
+
+/// The `--history` displacements, read before anything is written so that a
+/// bad file leaves no table behind.
+fn read_history(args: &ExportArgs) -> Result<Option<Vec<f64>>> {
+    let Some(path) = &args.history else {
+        return Ok(None);
+    };
+    let record = data::read(path, &args.read.options().input(Channel::Displacement))?;
+    let u = record
+        .displacement()
+        .ok_or_else(|| anyhow!("{}: no displacement column", path.display()))?;
+    Ok(Some(u.to_vec()))
 }
 
 fn report_precision(
@@ -88,18 +108,9 @@ fn report_precision(
     src: &export::Sources,
     bytes: &[u8],
     files: &[String],
+    history: Option<&[f64]>,
 ) -> Result<()> {
-    let history = match &args.history {
-        Some(path) => {
-            let record = data::read(path, &ReadOptions::default().input(Channel::Displacement))?;
-            let u = record
-                .displacement()
-                .ok_or_else(|| anyhow!("{}: no displacement column", path.display()))?;
-            Some(u.to_vec())
-        }
-        None => None,
-    };
-    let results = precision::compare(src, bytes, history.as_deref())?;
+    let results = precision::compare(src, bytes, history)?;
     let over = match &args.history {
         Some(p) => format!("over {}", p.display()),
         None => "over the reference protocol (3 cycles at 0.5, 1, 2, 4, 6, 8 x Zu; PHM: x half the yield twist)".into(),
