@@ -7,6 +7,8 @@
 //! `../shared/data/synthetic/` (made by an independent simulator) must pass
 //! too.
 
+#[path = "support/shared_records.rs"]
+mod shared_records;
 use hyst::discover::synthetic::{record, Noise, Path};
 use hyst::discover::{discover, weigh, Diagnosis, WeighOptions};
 use hyst::fit::experiment::Experiment;
@@ -14,6 +16,7 @@ use hyst::fit::problem::Problem;
 use hyst::fit::run::{self, Method, Quiet};
 use hyst::model::{EffectRef, ModelSpec};
 use hysteresis::bwbn::EffectKind;
+use shared_records::shared;
 
 fn fit_bw(exp: Experiment) -> (Problem, hyst::fit::run::Outcome) {
     let problem = Problem::new(ModelSpec::BW, exp, &[]).unwrap();
@@ -128,15 +131,6 @@ fn pairs_of_hidden_effects_are_found_by_the_loop() {
         }
     }
     assert!(failures.is_empty(), "{}", failures.join("\n"));
-}
-
-fn shared(name: &str) -> Experiment {
-    let path = format!(
-        "{}/../../shared/data/synthetic/{name}",
-        env!("CARGO_MANIFEST_DIR")
-    );
-    let rec = hyst::data::read(&path, &Default::default()).unwrap();
-    Experiment::from_record(&rec, None).unwrap()
 }
 
 #[test]

@@ -8,6 +8,8 @@
 //! step-wise and the earthquake-like paths, at both noise levels; and the
 //! shared records of `../shared/data/synthetic/` (an independent simulator).
 
+#[path = "support/shared_records.rs"]
+mod shared_records;
 use hyst::discover::slip::{self, SlipCheck};
 use hyst::discover::synthetic::{record, record_with_gap, Noise, Path};
 use hyst::discover::Diagnosis;
@@ -16,6 +18,7 @@ use hyst::fit::problem::Problem;
 use hyst::fit::run::{self, Method, Quiet};
 use hyst::model::{EffectRef, ModelSpec};
 use hysteresis::bwbn::EffectKind;
+use shared_records::shared;
 
 /// Fits `bw` to `exp` as `hyst diagnose` does and runs the slip check.
 fn check(exp: Experiment) -> SlipCheck {
@@ -84,15 +87,6 @@ fn hidden_library_effects_are_not_taken_for_slip() {
             assert!(!c.significant, "{kind:?}, {which:?}: {}", c.evidence);
         }
     }
-}
-
-fn shared(name: &str) -> Experiment {
-    let path = format!(
-        "{}/../../shared/data/synthetic/{name}",
-        env!("CARGO_MANIFEST_DIR")
-    );
-    let rec = hyst::data::read(&path, &Default::default()).unwrap();
-    Experiment::from_record(&rec, None).unwrap()
 }
 
 #[test]
