@@ -8,8 +8,11 @@
 //! step-wise and the earthquake-like paths, at both noise levels; and the
 //! shared records of `../shared/data/synthetic/` (an independent simulator).
 
+#[path = "support/cli.rs"]
+mod cli;
 #[path = "support/shared_records.rs"]
 mod shared_records;
+use cli::{hyst, ok, write};
 use hyst::discover::slip::{self, SlipCheck};
 use hyst::discover::synthetic::{record, record_with_gap, Noise, Path};
 use hyst::discover::Diagnosis;
@@ -106,32 +109,22 @@ fn the_shared_synthetic_records_have_no_slip() {
 #[test]
 fn hyst_diagnose_names_the_gap_in_text_and_json() {
     let exp = record_with_gap(0.5, Path::StepWise, Noise::LOW, 8).unwrap();
-    let dir = std::env::temp_dir().join(format!("hyst-slip-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    let csv = dir.join("gap.csv");
     let rows: String = exp
         .input
         .iter()
         .zip(&exp.output)
         .map(|(u, f)| format!("{u},{f}\n"))
         .collect();
-    std::fs::write(&csv, format!("displacement (mm),force (kN)\n{rows}")).unwrap();
-    let run = |json: bool| {
-        let mut cmd = std::process::Command::new(env!("CARGO_BIN_EXE_hyst"));
-        cmd.args(["diagnose", csv.to_str().unwrap(), "--model", "bw"]);
-        cmd.args(["--candidates", "pinching"]);
-        if json {
-            cmd.arg("--json");
-        }
-        let out = cmd.output().unwrap();
-        assert!(
-            out.status.success(),
-            "{}",
-            String::from_utf8_lossy(&out.stderr)
-        );
-        String::from_utf8(out.stdout).unwrap()
-    };
-    let text = run(false);
+    let csv = write("gap.csv", &format!("displacement (mm),force (kN)\n{rows}"));
+    let args = [
+        "diagnose",
+        &csv,
+        "--model",
+        "bw",
+        "--candidates",
+        "pinching",
+    ];
+    let text = String::from_utf8(ok(hyst(&args)).stdout).unwrap();
     assert!(
         text.contains("beyond the library's effects:")
             && text
@@ -139,7 +132,8 @@ fn hyst_diagnose_names_the_gap_in_text_and_json() {
                 .any(|l| l.trim() == "slip or gap               SIGNIFICANT"),
         "{text}"
     );
-    let v: serde_json::Value = serde_json::from_str(&run(true)).unwrap();
+    let json = ok(hyst(&[&args[..], &["--json"]].concat())).stdout;
+    let v: serde_json::Value = serde_json::from_slice(&json).unwrap();
     assert_eq!(
         v["slip"]["significant"],
         serde_json::Value::Bool(true),
@@ -147,5 +141,4 @@ fn hyst_diagnose_names_the_gap_in_text_and_json() {
     );
     let plateau = v["slip"]["plateau"].as_f64().unwrap();
     assert!((0.8..=1.1).contains(&plateau), "{plateau}");
-    std::fs::remove_dir_all(&dir).unwrap();
 }

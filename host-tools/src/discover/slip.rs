@@ -179,8 +179,8 @@ pub fn check(d: &Diagnosis, drive: &Drive) -> Option<SlipCheck> {
          their anchorage, bolts in oversized holes, backlash), and no effect of the library holds \
          the force at zero over a band: pinching narrows the loop around zero force by slowing z, \
          but the elastic part alpha k u keeps a slope there, and it grows with the dissipated \
-         energy. Model it outside them (a gap element \
-         in series with this model); the plateau's length is about twice the gap."
+         energy. Model it outside them (a gap element in series with this model); the \
+         plateau's length is about twice the gap."
             .to_string()
     } else if reversals < MIN_REVERSALS {
         format!("Not significant: {reversals} half-cycles are too few to tell (at least {MIN_REVERSALS}).")

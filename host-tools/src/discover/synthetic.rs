@@ -104,14 +104,9 @@ pub fn path(path: Path) -> Vec<f64> {
     .expect("the synthetic paths have valid settings")
 }
 
-/// A record of the base model with the `hidden` effects, along `path`, with
-/// `noise` from `seed`.
-pub fn record(
-    hidden: &[EffectKind],
-    path_kind: Path,
-    noise: Noise,
-    seed: u64,
-) -> Result<Experiment> {
+/// The base model with the `hidden` effects at [`hidden_values`], integrated
+/// far more tightly than any fit does.
+fn element(hidden: &[EffectKind]) -> Result<Bwbn<f64>> {
     let mut spec = ModelSpec::BW;
     for k in hidden {
         spec = spec.with(EffectRef::Builtin(*k));
@@ -133,13 +128,24 @@ pub fn record(
             values.iter().find(|(k, _)| *k == n).map(|(_, v)| *v)
         })
         .map_err(|e| anyhow!("synthetic model: {e}"))?;
-    let u = path(path_kind);
     let tight = Control {
         method: Method::Dp54,
         tol: 1e-10,
         max_substeps: 2000,
     };
-    let mut el = Bwbn::new(params).with_control(tight);
+    Ok(Bwbn::new(params).with_control(tight))
+}
+
+/// A record of the base model with the `hidden` effects, along `path`, with
+/// `noise` from `seed`.
+pub fn record(
+    hidden: &[EffectKind],
+    path_kind: Path,
+    noise: Noise,
+    seed: u64,
+) -> Result<Experiment> {
+    let u = path(path_kind);
+    let mut el = element(hidden)?;
     let mut f = Vec::with_capacity(u.len());
     for &ui in &u {
         f.push(
@@ -182,20 +188,7 @@ pub fn record_with_gap(gap: f64, path_kind: Path, noise: Noise, seed: u64) -> Re
     if !(gap.is_finite() && gap >= 0.0) {
         return Err(anyhow!("the gap must be a finite length >= 0, not {gap}"));
     }
-    let (params, _) = ModelSpec::BW
-        .build(|n| {
-            if n == hysteresis::bwbn::ENERGY_LIMIT {
-                return Some(5000.0);
-            }
-            BASE.iter().find(|(k, _)| *k == n).map(|(_, v)| *v)
-        })
-        .map_err(|e| anyhow!("synthetic model: {e}"))?;
-    let tight = Control {
-        method: Method::Dp54,
-        tol: 1e-10,
-        max_substeps: 2000,
-    };
-    let mut el = Bwbn::new(params).with_control(tight);
+    let mut el = element(&[])?;
     let trial = |el: &mut Bwbn<f64>, y: f64| {
         el.set_trial(y)
             .map(|r| r.force)
