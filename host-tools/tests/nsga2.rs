@@ -424,6 +424,81 @@ fn threads_do_not_change_the_result() {
     }
 }
 
+/// ZDT1 evaluated `size` candidates at a time, recording the batch lengths it was given (or, with
+/// `short`, dropping the last evaluation of each batch).
+struct BatchedZdt1 {
+    zdt: Zdt,
+    size: usize,
+    short: bool,
+    seen: std::sync::Mutex<Vec<usize>>,
+}
+
+impl Problem for BatchedZdt1 {
+    fn bounds(&self) -> &[Bounds] {
+        self.zdt.bounds()
+    }
+    fn num_objectives(&self) -> usize {
+        2
+    }
+    fn evaluate(&self, _: &[f64]) -> Evaluation {
+        unreachable!("every evaluation goes through evaluate_batch")
+    }
+    fn batch_size(&self) -> usize {
+        self.size
+    }
+    fn evaluate_batch(&self, xs: &[&[f64]]) -> Vec<Evaluation> {
+        self.seen.lock().unwrap().push(xs.len());
+        let mut out: Vec<Evaluation> = xs.iter().map(|x| self.zdt.evaluate(x)).collect();
+        if self.short {
+            out.pop();
+        }
+        out
+    }
+}
+
+#[test]
+fn batches_change_nothing_but_how_candidates_are_handed_over() {
+    let zdt = Zdt::new(ZdtKind::Zdt1, 30);
+    let run = |parallel| Nsga2 {
+        generations: 30,
+        parallel,
+        ..settings(3)
+    };
+    let one_by_one = run(false).run(&zdt).expect("valid settings");
+    for parallel in [false, true] {
+        let batched = BatchedZdt1 {
+            zdt: Zdt::new(ZdtKind::Zdt1, 30),
+            size: 8,
+            short: false,
+            seen: Default::default(),
+        };
+        let outcome = run(parallel).run(&batched).expect("valid settings");
+        assert_eq!(fingerprint(&outcome), fingerprint(&one_by_one));
+        let seen = batched.seen.into_inner().unwrap();
+        // 30 generations of 100 candidates (the first one included): 12 batches of 8 and one
+        // of 4 each.
+        assert_eq!(outcome.evaluations, 3_000);
+        assert_eq!(seen.len(), 30 * 13, "{parallel}");
+        assert!(seen.iter().all(|&n| n == 8 || n == 4));
+        assert_eq!(seen.iter().sum::<usize>(), 3_000);
+    }
+    let short = BatchedZdt1 {
+        zdt,
+        size: 8,
+        short: true,
+        seen: Default::default(),
+    };
+    let err = run(false).run(&short).expect_err("a batch came back short");
+    assert_eq!(
+        err,
+        Nsga2Error::BatchLength {
+            candidates: 100,
+            evaluations: 87
+        }
+    );
+    assert!(err.to_string().contains("expected one each"), "{err}");
+}
+
 #[test]
 fn the_callback_sees_every_generation_and_can_stop_the_run() {
     let p = Zdt::new(ZdtKind::Zdt2, 10);

@@ -4,6 +4,7 @@ pub mod dual;
 pub mod experiment;
 pub mod homotopy;
 pub mod identifiability;
+pub mod lanes;
 pub mod lsq;
 pub mod nsga2;
 pub mod objectives;

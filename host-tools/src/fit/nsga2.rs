@@ -134,6 +134,21 @@ pub trait Problem: Sync {
     /// [`Outcome::invalid_evaluations`].
     fn evaluate(&self, x: &[f64]) -> Evaluation;
 
+    /// How many candidates [`evaluate_batch`](Self::evaluate_batch) takes at once (1: one at a
+    /// time).
+    fn batch_size(&self) -> usize {
+        1
+    }
+
+    /// Evaluates up to [`batch_size`](Self::batch_size) candidates, in their order. The default
+    /// calls [`evaluate`](Self::evaluate) on each; a problem that simulates several candidates
+    /// together (one per vector lane, [`crate::fit::lanes`]) overrides both. Each result must be
+    /// what `evaluate` gives for that candidate alone, whatever its companions, for runs to stay
+    /// reproducible.
+    fn evaluate_batch(&self, xs: &[&[f64]]) -> Vec<Evaluation> {
+        xs.iter().map(|x| self.evaluate(x)).collect()
+    }
+
     /// Names of the variables, for CSV headers: `x1`, `x2`, ... unless overridden.
     fn variable_names(&self) -> Vec<String> {
         (1..=self.bounds().len()).map(|i| format!("x{i}")).collect()
@@ -413,6 +428,13 @@ pub enum Nsga2Error {
         /// Constraint violations returned and expected.
         constraints: (usize, usize),
     },
+    /// `evaluate_batch` returned more or fewer evaluations than it was given candidates.
+    BatchLength {
+        /// Candidates of the generation.
+        candidates: usize,
+        /// Evaluations returned for them.
+        evaluations: usize,
+    },
 }
 
 impl fmt::Display for Nsga2Error {
@@ -435,6 +457,13 @@ impl fmt::Display for Nsga2Error {
                 f,
                 "evaluating {variables:?} returned {} objectives and {} constraint violations: expected {} and {}",
                 objectives.0, constraints.0, objectives.1, constraints.1
+            ),
+            Nsga2Error::BatchLength {
+                candidates,
+                evaluations,
+            } => write!(
+                f,
+                "evaluate_batch returned {evaluations} evaluations for {candidates} candidates: expected one each"
             ),
         }
     }
@@ -736,17 +765,22 @@ impl Nsga2 {
         problem: &P,
         candidates: Vec<Candidate>,
     ) -> Result<Vec<Individual>, Nsga2Error> {
-        let evaluations: Vec<Evaluation> = if self.parallel {
-            candidates
-                .par_iter()
-                .map(|c| problem.evaluate(&c.variables))
-                .collect()
-        } else {
-            candidates
-                .iter()
-                .map(|c| problem.evaluate(&c.variables))
-                .collect()
+        let batch = |chunk: &[Candidate]| {
+            let xs: Vec<&[f64]> = chunk.iter().map(|c| c.variables.as_slice()).collect();
+            problem.evaluate_batch(&xs)
         };
+        let size = problem.batch_size().max(1);
+        let evaluations: Vec<Evaluation> = if self.parallel {
+            candidates.par_chunks(size).flat_map_iter(batch).collect()
+        } else {
+            candidates.chunks(size).flat_map(batch).collect()
+        };
+        if evaluations.len() != candidates.len() {
+            return Err(Nsga2Error::BatchLength {
+                candidates: candidates.len(),
+                evaluations: evaluations.len(),
+            });
+        }
         let (m, k) = (problem.num_objectives(), problem.num_constraints());
         candidates
             .into_iter()

@@ -1,0 +1,25 @@
+//! Simulating several candidate parameter sets at once, one per vector lane, for the
+//! evolutionary search (thesis ch. 3): NSGA-II evaluates a hundred candidates a generation, all
+//! on the same record, so the same arithmetic runs for each of them in lockstep.
+//!
+//! [`BoucWenLanes`] is the plain Bouc-Wen oscillator of thesis eqs 3.3-3.4 and 3.13, per unit
+//! mass, for [`LANES`] parameter sets, integrated by the classic fourth-order Runge-Kutta method
+//! with a fixed number of steps per sample: no error control, so its error is measured where it
+//! is used ([`search`] checks it against the core's error-controlled
+//! [`Sdof`](hysteresis::bwbn::Sdof) before a search, and the search's result is scored with the
+//! core). Its `|z|^n` comes from [`math`], whose polynomials vectorise where the core's
+//! table-driven `pow` cannot.
+
+pub mod bouc_wen;
+pub mod math;
+pub mod search;
+
+pub use bouc_wen::{BoucWenLanes, LaneState};
+pub use search::{SearchModel, SearchSummary};
+
+/// Parameter sets simulated together: two AVX2 registers of four `f64`, enough independent work
+/// to hide the latency of the polynomial chains.
+pub const LANES: usize = 8;
+
+/// One value per lane.
+pub type Lanes = [f64; LANES];
