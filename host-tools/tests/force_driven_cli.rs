@@ -94,3 +94,115 @@ fn a_force_record_without_a_mass_is_refused_with_the_remedy() {
     ]));
     assert!(msg.contains("positive number of kg"), "{msg}");
 }
+
+/// NSGA-II on a force-driven plain Bouc-Wen record searches with the lane-batched RK4 model
+/// (`hyst::fit::lanes`), says so, and reports what the error-controlled model scores: the
+/// front's file and `hyst simulate` of the fit agree with the reported NRMSE.
+#[test]
+fn nsga2_searches_with_the_fixed_step_model_and_reports_the_core() {
+    let fit = tmp("nsga2.json").display().to_string();
+    let front = tmp("front.csv").display().to_string();
+    let out = ok(hyst(&[
+        "fit",
+        RECORD,
+        "--model",
+        "bw",
+        "--mass",
+        "500",
+        "--fix",
+        "k0=6",
+        "--method",
+        "nsga2",
+        "--population",
+        "40",
+        "--generations",
+        "20",
+        "--pareto",
+        &front,
+        "--out",
+        &fit,
+        "--json",
+    ]));
+    let summary: Value = serde_json::from_slice(&out.stdout).unwrap();
+    let search = &summary["search_model"];
+    assert_eq!(search["method"], "rk4", "{summary}");
+    assert_eq!(search["lanes"].as_u64(), Some(8));
+    let steps = search["steps_per_sample"].as_u64().unwrap();
+    assert!((1..=8).contains(&steps), "{search}");
+    assert!(
+        search["checked_error"].as_f64().unwrap() <= 2.5e-4,
+        "{search}"
+    );
+    let nrmse = summary["nrmse"].as_f64().unwrap();
+    assert!(nrmse.is_finite() && nrmse < 0.5, "{nrmse}");
+
+    let sim = ok(hyst(&[
+        "simulate",
+        RECORD,
+        "--params",
+        &fit,
+        "--out",
+        &tmp("p.csv").display().to_string(),
+    ]));
+    let note = stderr(&sim);
+    let number_after = |key: &str| -> f64 {
+        note.split(key)
+            .nth(1)
+            .and_then(|s| s.split_whitespace().next())
+            .and_then(|v| v.parse().ok())
+            .unwrap_or_else(|| panic!("no `{key}` in {note}"))
+    };
+    let simulated = number_after("displacement RMS error ") / number_after("the measured RMS ");
+    assert!(
+        (simulated - nrmse).abs() <= 0.01 * nrmse,
+        "{simulated} vs {nrmse}"
+    );
+
+    // The front file scores with the core too: the chosen member's row carries the fit's
+    // NRMSE and four objectives.
+    let text = std::fs::read_to_string(&front).unwrap();
+    let ortiz: Vec<f64> = summary["ortiz"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|v| v.as_f64().unwrap())
+        .collect();
+    let rows: Vec<Vec<f64>> = text
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').map(|v| v.parse().unwrap()).collect())
+        .collect();
+    let close = |a: f64, b: f64| (a - b).abs() <= 1e-12 * b.abs();
+    assert!(
+        rows.iter().any(|r| {
+            let tail = &r[r.len() - 5..];
+            close(tail[4], nrmse) && tail[..4].iter().zip(&ortiz).all(|(a, b)| close(*a, *b))
+        }),
+        "no row of the front scores as the fit ({nrmse}, {ortiz:?}):\n{text}"
+    );
+
+    let text = String::from_utf8(
+        ok(hyst(&[
+            "fit",
+            RECORD,
+            "--model",
+            "bw",
+            "--mass",
+            "500",
+            "--fix",
+            "k0=6",
+            "--method",
+            "nsga2",
+            "--population",
+            "16",
+            "--generations",
+            "2",
+        ]))
+        .stdout,
+    )
+    .unwrap();
+    assert!(
+        text.contains("Note: the search simulated 8 candidates at a time by RK4"),
+        "{text}"
+    );
+}

@@ -245,6 +245,12 @@ pub fn run(args: FitArgs) -> Result<()> {
             "seconds": seconds,
             "identifiability": outcome.identifiability,
             "identifiability_summary": outcome.identifiability.summary(),
+            "search_model": outcome.search.map(|s| json!({
+                "method": "rk4",
+                "steps_per_sample": s.substeps,
+                "lanes": s.lanes,
+                "checked_error": s.checked_error,
+            })),
         });
         obj["params"] = file
             .as_object()
@@ -270,6 +276,9 @@ pub fn run(args: FitArgs) -> Result<()> {
             println!("  {name:<10} {v:>14.6e}{fixed}");
         }
         println!("{}", outcome.identifiability.summary());
+        if let Some(search) = &outcome.search {
+            println!("Note: {search}.");
+        }
         if let Some(out) = &args.out {
             println!("parameters written to {}", out.display());
         }

@@ -3,6 +3,7 @@
 
 use super::dual::Dual;
 use super::experiment::{Drive, Experiment, Prediction};
+use super::lanes::{SearchModel, LANES};
 use super::lsq::Residuals;
 use super::objectives::{Scores, Target, ENVELOPE_FLOOR};
 use super::parametrization::Candidate;
@@ -296,6 +297,9 @@ pub struct Ortiz<'a> {
     problem: &'a Problem,
     bounds: Vec<super::nsga2::Bounds>,
     constrained: bool,
+    /// The fixed-step model the search simulates candidates with, several at a time, where
+    /// the problem allows one ([`SearchModel::for_problem`]).
+    search: Option<SearchModel>,
 }
 
 impl<'a> Ortiz<'a> {
@@ -315,7 +319,38 @@ impl<'a> Ortiz<'a> {
             problem,
             bounds,
             constrained,
+            search: None,
         }
+    }
+
+    /// The same, evaluating candidates with the lane-batched fixed-step model where
+    /// [`SearchModel::for_problem`] finds one accurate enough.
+    pub fn with_search_model(problem: &'a Problem) -> Self {
+        Ortiz {
+            search: SearchModel::for_problem(problem),
+            ..Self::new(problem)
+        }
+    }
+
+    /// The search model in use, if any.
+    pub fn search_model(&self) -> Option<&SearchModel> {
+        self.search.as_ref()
+    }
+
+    fn evaluation(&self, x: &[f64], scores: Option<Scores>) -> super::nsga2::Evaluation {
+        let objectives = match scores {
+            Some(s) => s.ortiz.to_vec(),
+            None => vec![f64::INFINITY; 4],
+        };
+        let violations = if self.constrained {
+            let phys = self.problem.par.physical(x);
+            let (b, g) = (phys["beta"], phys["gamma"]);
+            // violation > 0 when broken: beta + gamma > 0 and beta - gamma > 0
+            vec![-(b + g), -(b - g)]
+        } else {
+            vec![]
+        };
+        super::nsga2::Evaluation::new(objectives, violations)
     }
 
     /// Writes the front with physical parameter values.
@@ -333,12 +368,15 @@ impl<'a> Ortiz<'a> {
         writeln!(out, "{},f1,f2,f3,f4,nrmse", names.join(","))?;
         for ind in front {
             let phys = self.problem.par.physical(&ind.variables);
-            let nrmse = self
-                .problem
-                .scores(&ind.variables)
-                .map_or(f64::NAN, |s| s.nrmse);
+            // Scored again with the core's oscillator: the search's own objectives may come
+            // from the fixed-step model.
+            let scores = self.problem.scores(&ind.variables);
+            let nrmse = scores.as_ref().map_or(f64::NAN, |s| s.nrmse);
             let vals: Vec<String> = names.iter().map(|n| phys[n].to_string()).collect();
-            let objs: Vec<String> = ind.objectives.iter().map(|v| v.to_string()).collect();
+            let objs: Vec<String> = match &scores {
+                Some(s) => s.ortiz.iter().map(|v| v.to_string()).collect(),
+                None => vec![f64::NAN.to_string(); 4],
+            };
             writeln!(out, "{},{},{nrmse}", vals.join(","), objs.join(","))?;
         }
         Ok(())
@@ -360,19 +398,28 @@ impl super::nsga2::Problem for Ortiz<'_> {
         }
     }
     fn evaluate(&self, x: &[f64]) -> super::nsga2::Evaluation {
-        let objectives = match self.problem.scores(x) {
-            Some(s) => s.ortiz.to_vec(),
-            None => vec![f64::INFINITY; 4],
-        };
-        let violations = if self.constrained {
-            let phys = self.problem.par.physical(x);
-            let (b, g) = (phys["beta"], phys["gamma"]);
-            // violation > 0 when broken: beta + gamma > 0 and beta - gamma > 0
-            vec![-(b + g), -(b - g)]
+        self.evaluate_batch(&[x]).remove(0)
+    }
+    fn batch_size(&self) -> usize {
+        if self.search.is_some() {
+            LANES
         } else {
-            vec![]
+            1
+        }
+    }
+    fn evaluate_batch(&self, xs: &[&[f64]]) -> Vec<super::nsga2::Evaluation> {
+        let scores: Vec<Option<Scores>> = match &self.search {
+            Some(model) => model
+                .predict(self.problem, xs)
+                .iter()
+                .map(|p| Some(self.problem.target.score(&self.problem.exp, p.as_ref()?)))
+                .collect(),
+            None => xs.iter().map(|x| self.problem.scores(x)).collect(),
         };
-        super::nsga2::Evaluation::new(objectives, violations)
+        xs.iter()
+            .zip(scores)
+            .map(|(x, s)| self.evaluation(x, s))
+            .collect()
     }
     fn variable_names(&self) -> Vec<String> {
         self.problem

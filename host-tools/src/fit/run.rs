@@ -4,6 +4,7 @@
 
 use super::homotopy;
 use super::identifiability::{self, Identifiability};
+use super::lanes::SearchSummary;
 use super::lsq::{self, Options};
 use super::nsga2::Nsga2;
 use super::objectives::Scores;
@@ -68,6 +69,8 @@ pub struct Outcome {
     pub identifiability: Identifiability,
     /// Model simulations used.
     pub evaluations: usize,
+    /// The fixed-step model an evolutionary search simulated with, if it used one.
+    pub search: Option<SearchSummary>,
 }
 
 /// Progress reports of a running fit.
@@ -228,7 +231,7 @@ pub fn fit_with(
 /// NSGA-II on the Ortiz objectives; the thesis' solution (nearest the origin
 /// of the normalised front).
 fn evolve(problem: &Problem, evolution: &Evolution, progress: &dyn Progress) -> Result<Outcome> {
-    let ortiz = Ortiz::new(problem);
+    let ortiz = Ortiz::with_search_model(problem);
     let settings = &evolution.nsga2;
     let outcome = settings
         .run_with(&ortiz, |g| {
@@ -263,7 +266,10 @@ fn evolve(problem: &Problem, evolution: &Evolution, progress: &dyn Progress) -> 
         iterations: settings.generations,
         ..sol
     };
-    finish(problem, "nsga2", sol, evaluations)
+    Ok(Outcome {
+        search: ortiz.search_model().map(|m| m.summary()),
+        ..finish(problem, "nsga2", sol, evaluations)?
+    })
 }
 
 /// The least-squares view of `problem` at `x`: residuals and Jacobian,
@@ -294,6 +300,7 @@ pub fn finish(
         scores,
         identifiability,
         evaluations,
+        search: None,
     })
 }
 
