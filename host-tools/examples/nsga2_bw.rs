@@ -8,15 +8,17 @@
 //! The oscillator is `hysteresis::bwbn::Sdof` (error-controlled Dormand-Prince at `--tol`), fed
 //! the exact F(t) at each sample, linear in between; `--half-steps` adds the midpoint value, so
 //! that the forcing matches the pymoo side's RK4 stages (t, t + dt/2, t + dt) at twice the cost.
-//! Either way the model is far more accurate than the optimum either optimiser finds: the
-//! program prints the RMS error at the true parameters first (5e-5 mm, or 3e-5 mm with half
-//! steps, against about 1e-3 mm at the end of a run). `SIMS_ONLY=1` prints only that line and
-//! the model's own throughput.
+//! With `--lanes K` it is `hyst::fit::lanes::BoucWenLanes` instead: eight candidates at a time,
+//! K fixed RK4 steps a sample, the forcing linear between samples (as `hyst fit` sees a record).
+//! The program prints the model's RMS error at the true parameters against the record first
+//! (the record is pymoo's own RK4, so this is how far apart the two models are), then the
+//! model's throughput. `SIMS_ONLY=1` prints only those.
 //!
 //! ```sh
-//! cargo run --release -p hysteresis-host --example nsga2_bw -- [--seeds 1 2 3] [--serial] [--tol 1e-7] [--half-steps]
+//! cargo run --release -p hysteresis-host --example nsga2_bw -- [--seeds 1 2 3] [--serial] [--tol 1e-7] [--half-steps] [--lanes K]
 //! ```
 
+use hyst::fit::lanes::{BoucWenLanes, LANES};
 use hyst::fit::nsga2::{Bounds, Evaluation, Nsga2, Problem};
 use hysteresis::bwbn::{BoucWen, BwbnParams, Control, Method, Sdof};
 use std::time::Instant;
@@ -56,6 +58,10 @@ struct BwIdentification {
     bounds: Vec<Bounds>,
     control: Control<f64>,
     half_steps: bool,
+    /// RK4 steps a sample of the lane-batched model, if it is used.
+    lanes: Option<usize>,
+    /// F(t)/m at the samples, t = 0 included.
+    forcing: Vec<f64>,
 }
 
 impl BwIdentification {
@@ -78,6 +84,57 @@ impl BwIdentification {
         }
         Some((sum / self.measured.len() as f64).sqrt())
     }
+
+    /// RMS displacement errors (mm) of up to [`LANES`] candidates simulated together, RK4 with
+    /// `substeps` steps a sample; `None` where a candidate cannot be simulated.
+    fn rms_lanes(&self, xs: &[&[f64]], substeps: usize) -> Vec<Option<f64>> {
+        let bases: Vec<Option<(BoucWen<f64>, f64)>> = xs
+            .iter()
+            .map(|x| {
+                let base = BoucWen::new(K / MASS, x[0], x[4], x[1], x[2]).ok()?;
+                Some((base, x[3]))
+            })
+            .collect();
+        let valid: Vec<(BoucWen<f64>, f64)> = bases.iter().flatten().copied().collect();
+        let Some(lanes) = BoucWenLanes::new(&valid) else {
+            return vec![None; xs.len()];
+        };
+        let mut sse = [0.0; LANES];
+        let mut i = 0;
+        lanes.simulate(&self.forcing, DT, substeps, |s| {
+            if i > 0 {
+                for (l, e) in sse.iter_mut().enumerate() {
+                    let d = s.u[l] - self.measured[i - 1];
+                    *e = d.mul_add(d, *e);
+                }
+            }
+            i += 1;
+        });
+        let mut lane = 0;
+        bases
+            .iter()
+            .map(|b| {
+                b.as_ref()?;
+                let rms = (sse[lane] / self.measured.len() as f64).sqrt();
+                lane += 1;
+                rms.is_finite().then_some(rms)
+            })
+            .collect()
+    }
+
+    /// The model's RMS error at `x` with the chosen integrator.
+    fn rms_any(&self, x: &[f64]) -> Option<f64> {
+        match self.lanes {
+            Some(k) => self.rms_lanes(&[x], k)[0],
+            None => self.rms(x),
+        }
+    }
+}
+
+fn evaluation(x: &[f64], rms: Option<f64>) -> Evaluation {
+    let (beta, gamma) = (x[1], x[2]);
+    let violations = vec![(-(beta + gamma)).max(0.0), (-(beta - gamma)).max(0.0)];
+    Evaluation::new(vec![rms.unwrap_or(f64::INFINITY)], violations)
 }
 
 impl Problem for BwIdentification {
@@ -91,10 +148,24 @@ impl Problem for BwIdentification {
         2
     }
     fn evaluate(&self, x: &[f64]) -> Evaluation {
-        let (beta, gamma) = (x[1], x[2]);
-        let violations = vec![(-(beta + gamma)).max(0.0), (-(beta - gamma)).max(0.0)];
-        let rms = self.rms(x).unwrap_or(f64::INFINITY);
-        Evaluation::new(vec![rms], violations)
+        evaluation(x, self.rms_any(x))
+    }
+    fn batch_size(&self) -> usize {
+        if self.lanes.is_some() {
+            LANES
+        } else {
+            1
+        }
+    }
+    fn evaluate_batch(&self, xs: &[&[f64]]) -> Vec<Evaluation> {
+        match self.lanes {
+            Some(k) => xs
+                .iter()
+                .zip(self.rms_lanes(xs, k))
+                .map(|(x, rms)| evaluation(x, rms))
+                .collect(),
+            None => xs.iter().map(|x| self.evaluate(x)).collect(),
+        }
     }
     fn variable_names(&self) -> Vec<String> {
         NAMES.iter().map(|s| s.to_string()).collect()
@@ -106,11 +177,19 @@ fn main() {
     let mut parallel = true;
     let mut tol = 1e-7;
     let mut half_steps = false;
+    let mut lanes = None;
     let mut args = std::env::args().skip(1).peekable();
     while let Some(a) = args.next() {
         match a.as_str() {
             "--serial" => parallel = false,
             "--half-steps" => half_steps = true,
+            "--lanes" => {
+                lanes = Some(
+                    args.next()
+                        .and_then(|v| v.parse().ok())
+                        .expect("--lanes takes a number of RK4 steps a sample"),
+                )
+            }
             "--tol" => {
                 tol = args
                     .next()
@@ -124,7 +203,7 @@ fn main() {
                 }
             }
             other => panic!(
-                "unknown argument {other}: expected --seeds N.., --serial, --tol X, --half-steps"
+                "unknown argument {other}: expected --seeds N.., --serial, --tol X, --half-steps, --lanes K"
             ),
         }
     }
@@ -141,8 +220,12 @@ fn main() {
             }
         })
         .collect();
+    let measured = record();
+    let forcing = (0..=measured.len())
+        .map(|i| forcing(i as f64 * DT) / MASS)
+        .collect();
     let problem = BwIdentification {
-        measured: record(),
+        measured,
         bounds,
         control: Control {
             method: Method::Dp54,
@@ -150,22 +233,33 @@ fn main() {
             max_substeps: 1000,
         },
         half_steps,
+        lanes,
+        forcing,
     };
-    let floor = problem.rms(&TRUTH).expect("the truth simulates");
+    let floor = problem.rms_any(&TRUTH).expect("the truth simulates");
     let start = Instant::now();
     let sims = if std::env::var_os("SIMS_ONLY").is_some() {
         50
     } else {
         200
     };
-    for i in 0..sims {
-        let f = 0.9 + 0.2 * i as f64 / sims as f64;
-        let x: Vec<f64> = TRUTH.iter().map(|v| v * f).collect();
-        std::hint::black_box(problem.rms(&x));
+    let xs: Vec<Vec<f64>> = (0..sims)
+        .map(|i| {
+            let f = 0.9 + 0.2 * i as f64 / sims as f64;
+            TRUTH.iter().map(|v| v * f).collect()
+        })
+        .collect();
+    for chunk in xs.chunks(problem.batch_size()) {
+        let refs: Vec<&[f64]> = chunk.iter().map(|x| x.as_slice()).collect();
+        std::hint::black_box(problem.evaluate_batch(&refs));
     }
     let per_sim = start.elapsed().as_secs_f64() / sims as f64;
+    let model = match lanes {
+        Some(k) => format!("{LANES} lanes, RK4 at {k} step(s) a sample"),
+        None => format!("Dp54 at tol {tol:e}"),
+    };
     println!(
-        "model: Dp54 at tol {tol:e}; RMS error at the truth {floor:.2e} mm; {:.2} ms a simulation ({:.0}/s, one thread)",
+        "model: {model}; RMS error at the truth {floor:.2e} mm; {:.3} ms a simulation ({:.0}/s, one thread)",
         1e3 * per_sim,
         1.0 / per_sim
     );
