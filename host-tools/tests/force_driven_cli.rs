@@ -95,6 +95,15 @@ fn a_force_record_without_a_mass_is_refused_with_the_remedy() {
     assert!(msg.contains("positive number of kg"), "{msg}");
 }
 
+/// `hyst fit` by NSGA-II on the benchmark record with the options `extra`.
+fn nsga2_fit(extra: &[&str]) -> std::process::Output {
+    let mut args = vec![
+        "fit", RECORD, "--model", "bw", "--mass", "500", "--fix", "k0=6", "--method", "nsga2",
+    ];
+    args.extend_from_slice(extra);
+    hyst(&args)
+}
+
 /// NSGA-II on a force-driven plain Bouc-Wen record searches with the lane-batched RK4 model
 /// (`hyst::fit::lanes`), says so, and reports what the error-controlled model scores: the
 /// front's file and `hyst simulate` of the fit agree with the reported NRMSE.
@@ -102,17 +111,7 @@ fn a_force_record_without_a_mass_is_refused_with_the_remedy() {
 fn nsga2_searches_with_the_fixed_step_model_and_reports_the_core() {
     let fit = tmp("nsga2.json").display().to_string();
     let front = tmp("front.csv").display().to_string();
-    let out = ok(hyst(&[
-        "fit",
-        RECORD,
-        "--model",
-        "bw",
-        "--mass",
-        "500",
-        "--fix",
-        "k0=6",
-        "--method",
-        "nsga2",
+    let out = ok(nsga2_fit(&[
         "--population",
         "40",
         "--generations",
@@ -181,26 +180,9 @@ fn nsga2_searches_with_the_fixed_step_model_and_reports_the_core() {
         "no row of the front scores as the fit ({nrmse}, {ortiz:?}):\n{text}"
     );
 
-    let text = String::from_utf8(
-        ok(hyst(&[
-            "fit",
-            RECORD,
-            "--model",
-            "bw",
-            "--mass",
-            "500",
-            "--fix",
-            "k0=6",
-            "--method",
-            "nsga2",
-            "--population",
-            "16",
-            "--generations",
-            "2",
-        ]))
-        .stdout,
-    )
-    .unwrap();
+    let text =
+        String::from_utf8(ok(nsga2_fit(&["--population", "16", "--generations", "2"])).stdout)
+            .unwrap();
     assert!(
         text.contains("Note: the search simulated 8 candidates at a time by RK4"),
         "{text}"

@@ -2,9 +2,10 @@
 //!
 //! The evolutionary search only compares candidates; the solution it chooses is scored again with
 //! the core's error-controlled oscillator ([`Problem::scores`]), and so is every member of the
-//! front that `--front` writes. So the search may use [`BoucWenLanes`], about 15x faster a
-//! simulation than the error-controlled [`Sdof`](hysteresis::bwbn::Sdof) on the Bouc-Wen
-//! benchmark problem (docs/benchmarks.md), provided it is accurate enough to rank candidates.
+//! front that `--pareto` writes. So the search may use [`BoucWenLanes`], at one step a sample
+//! about 12x faster a simulation than the error-controlled [`Sdof`](hysteresis::bwbn::Sdof) on
+//! the Bouc-Wen benchmark problem (docs/benchmarks.md), provided it is accurate enough to rank
+//! candidates.
 //! [`SearchModel::for_problem`] chooses its RK4 steps a sample, doubling from 1 to
 //! [`MAX_SUBSTEPS`], as the fewest for which
 //!
