@@ -8,11 +8,12 @@
 //! The oscillator is `hysteresis::bwbn::Sdof` (error-controlled Dormand-Prince at `--tol`), fed
 //! the exact F(t) at each sample, linear in between; `--half-steps` adds the midpoint value, so
 //! that the forcing matches the pymoo side's RK4 stages (t, t + dt/2, t + dt) at twice the cost.
-//! With `--lanes K` it is `hyst::fit::lanes::BoucWenLanes` instead: eight candidates at a time,
+//! With `--lanes K` it is `hyst::fit::lanes::BoucWenLanes` instead: sixteen candidates at a time,
 //! K fixed RK4 steps a sample, the forcing linear between samples (as `hyst fit` sees a record).
 //! The program prints the model's RMS error at the true parameters against the record first
 //! (the record is pymoo's own RK4, so this is how far apart the two models are), then the
-//! model's throughput. `SIMS_ONLY=1` prints only those.
+//! model's throughput. `SIMS_ONLY=N` prints only those, timed over N simulations (50 if N is not
+//! a number).
 //!
 //! ```sh
 //! cargo run --release -p hysteresis-host --example nsga2_bw -- [--seeds 1 2 3] [--serial] [--tol 1e-7] [--half-steps] [--lanes K]
@@ -104,7 +105,7 @@ impl BwIdentification {
         lanes.simulate(&self.forcing, DT, substeps, |s| {
             if i > 0 {
                 for (l, e) in sse.iter_mut().enumerate() {
-                    let d = s.u[l] - self.measured[i - 1];
+                    let d = f64::from(s.u[l]) - self.measured[i - 1];
                     *e = d.mul_add(d, *e);
                 }
             }
@@ -239,7 +240,7 @@ fn main() {
     let floor = problem.rms_any(&TRUTH).expect("the truth simulates");
     let start = Instant::now();
     let sims = if std::env::var_os("SIMS_ONLY").is_some() {
-        50
+        std::env::var("SIMS_ONLY").unwrap().parse().unwrap_or(50)
     } else {
         200
     };

@@ -8,13 +8,17 @@
 //! ```
 //!
 //! from rest, the forcing linear between samples as in [`Sdof::step`](hysteresis::bwbn::Sdof),
-//! by classic Runge-Kutta (RK4) with `substeps` equal steps per sample.
+//! by classic Runge-Kutta (RK4) with `substeps` equal steps per sample, in `f32` (parameters and
+//! forcing are given in `f64` and rounded once). Each step's increment is added to the state with
+//! compensation (Kahan's summation: the part the addition rounds away is carried into the next
+//! step), so that the roundings do not add up over thousands of steps (tested below).
 
 use super::math::pow_abs;
 use super::{Lanes, LANES};
 use hysteresis::bwbn::BoucWen;
 
-/// The state of every lane after a sample (per unit mass: `energy` is work per unit mass).
+/// The state of every lane after a sample (per unit mass: `energy` is work per unit mass), in
+/// `f32`.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct LaneState {
     /// Displacement u.
@@ -60,7 +64,7 @@ impl BoucWenLanes {
         let lane = |get: &dyn Fn(&BoucWen<f64>, f64) -> f64| -> Lanes {
             core::array::from_fn(|i| {
                 let (p, xi) = sets.get(i).unwrap_or(&sets[0]);
-                get(p, *xi)
+                get(p, *xi) as f32
             })
         };
         Some(BoucWenLanes {
@@ -79,7 +83,7 @@ impl BoucWenLanes {
     }
 
     #[inline(always)]
-    fn rates(&self, u: &Lanes, v: &Lanes, z: &Lanes, f: f64) -> Rates {
+    fn rates(&self, u: &Lanes, v: &Lanes, z: &Lanes, f: f32) -> Rates {
         let zn = pow_abs(z, &self.n);
         let mut r = Rates {
             u: *v,
@@ -90,8 +94,8 @@ impl BoucWenLanes {
         for i in 0..LANES {
             r.v[i] = f - self.two_xi_w0[i] * v[i] - self.k_el[i] * u[i] - self.k_hys[i] * z[i];
             // beta sgn(v z), branch-free: the sign bit of v z moved onto beta.
-            let sign = (v[i] * z[i]).to_bits() & (1 << 63);
-            let beta = f64::from_bits(self.beta[i].to_bits() ^ sign);
+            let sign = (v[i] * z[i]).to_bits() & (1 << 31);
+            let beta = f32::from_bits(self.beta[i].to_bits() ^ sign);
             r.z[i] = v[i] * (1.0 - zn[i] * (beta + self.gamma[i]));
             r.e[i] = self.k_hys[i] * z[i] * v[i];
         }
@@ -109,21 +113,23 @@ impl BoucWenLanes {
         mut sink: impl FnMut(&LaneState),
     ) {
         let mut s = LaneState::default();
+        let mut lost = LaneState::default();
         if forcing.is_empty() {
             return;
         }
         sink(&s);
         let k = substeps.max(1);
-        let h = dt / k as f64;
+        let h = (dt / k as f64) as f32;
         let (h2, h6) = (0.5 * h, h / 6.0);
-        let stage = |y: &Lanes, dy: &Lanes, c: f64| -> Lanes {
+        let stage = |y: &Lanes, dy: &Lanes, c: f32| -> Lanes {
             core::array::from_fn(|i| dy[i].mul_add(c, y[i]))
         };
         for w in forcing.windows(2) {
             let slope = (w[1] - w[0]) / k as f64;
             for j in 0..k {
                 let f0 = w[0] + slope * j as f64;
-                let (fm, f1) = (f0 + 0.5 * slope, f0 + slope);
+                let (fm, f1) = ((f0 + 0.5 * slope) as f32, (f0 + slope) as f32);
+                let f0 = f0 as f32;
                 let k1 = self.rates(&s.u, &s.v, &s.z, f0);
                 let k2 = self.rates(
                     &stage(&s.u, &k1.u, h2),
@@ -143,15 +149,23 @@ impl BoucWenLanes {
                     &stage(&s.z, &k3.z, h),
                     f1,
                 );
-                let advance = |y: &mut Lanes, a: &Lanes, b: &Lanes, c: &Lanes, d: &Lanes| {
+                let advance = |y: &mut Lanes,
+                               lost: &mut Lanes,
+                               a: &Lanes,
+                               b: &Lanes,
+                               c: &Lanes,
+                               d: &Lanes| {
                     for i in 0..LANES {
-                        y[i] += h6 * (a[i] + 2.0 * (b[i] + c[i]) + d[i]);
+                        let step = h6 * (a[i] + 2.0 * (b[i] + c[i]) + d[i]) + lost[i];
+                        let sum = y[i] + step;
+                        lost[i] = step - (sum - y[i]);
+                        y[i] = sum;
                     }
                 };
-                advance(&mut s.u, &k1.u, &k2.u, &k3.u, &k4.u);
-                advance(&mut s.v, &k1.v, &k2.v, &k3.v, &k4.v);
-                advance(&mut s.z, &k1.z, &k2.z, &k3.z, &k4.z);
-                advance(&mut s.energy, &k1.e, &k2.e, &k3.e, &k4.e);
+                advance(&mut s.u, &mut lost.u, &k1.u, &k2.u, &k3.u, &k4.u);
+                advance(&mut s.v, &mut lost.v, &k1.v, &k2.v, &k3.v, &k4.v);
+                advance(&mut s.z, &mut lost.z, &k1.z, &k2.z, &k3.z, &k4.z);
+                advance(&mut s.energy, &mut lost.energy, &k1.e, &k2.e, &k3.e, &k4.e);
             }
             sink(&s);
         }
@@ -167,11 +181,12 @@ mod tests {
     const MASS: f64 = 5e-4;
     const TRUTH: (f64, f64, f64, f64, f64) = (0.2, 1.2, 2.0, -1.0, 0.05);
 
-    /// Eight parameter sets around the truth (alpha, n, beta, gamma, xi), the truth first.
+    /// A parameter set a lane around the truth (alpha, n, beta, gamma, xi: 70% to 130%), the
+    /// truth first.
     fn sets() -> Vec<(BoucWen<f64>, f64)> {
         (0..LANES)
             .map(|i| {
-                let f = 1.0 + 0.08 * (i as f64 - 3.5) * (i > 0) as u8 as f64;
+                let f = 1.0 + 0.04 * (i as f64 - 7.5) * (i > 0) as u8 as f64;
                 let (a, n, b, g, xi) = TRUTH;
                 let base = BoucWen::new(6.0 / MASS, a * f, n * f, b / f, g * f).unwrap();
                 (base, xi * f)
@@ -217,8 +232,8 @@ mod tests {
             for (l, r) in refs.iter().enumerate() {
                 let peak_u = r.iter().map(|p| p.0.abs()).fold(0.0, f64::max);
                 let peak_e = r.last().unwrap().1;
-                eu = eu.max((s.u[l] - r[i].0).abs() / peak_u);
-                ee = ee.max((s.energy[l] - r[i].1).abs() / peak_e);
+                eu = eu.max((f64::from(s.u[l]) - r[i].0).abs() / peak_u);
+                ee = ee.max((f64::from(s.energy[l]) - r[i].1).abs() / peak_e);
             }
             i += 1;
         });
@@ -229,13 +244,20 @@ mod tests {
     /// Against the core's converged solution at 100 Hz (the thesis example's rate: 5.7 samples a
     /// period). RK4 converges at second order here, not fourth: the rate has kinks that fixed
     /// steps cross, at every reversal (`sgn(u' z)`) and every zero of z (`|z|^n`, n = 1.2).
-    /// Measured from 2 to 256 steps a sample: u from 7.2e-4 to 3.5e-8 of its peak (order 2.05
-    /// on average), the energy from 7.4e-4 to 8.6e-9.
+    /// Measured from 2 to 16 steps a sample: u from 9.0e-4 to 1.2e-5 of its peak (order 2.05),
+    /// the energy from 7.2e-4 to 3.0e-6 (the same as the `f64` lanes measured before).
+    ///
+    /// Past that the `f32` rounding would show: a step's rounding of the phase is not damped,
+    /// so without care it adds up as a random walk, about `sqrt(steps) eps` of peak (measured
+    /// 2.6e-5 at 256 steps a sample). The states are summed with compensation (Kahan), which
+    /// leaves the rounding of the rates alone: at 256 steps a sample, where the discretisation
+    /// error is 3.5e-8 (measured in `f64`), u and the energy are 2.1e-7 and 2.3e-7 off, under
+    /// two `f32` roundings; asserted below 16.
     #[test]
-    fn converges_to_the_core_at_second_order() {
+    fn converges_to_the_core_at_second_order_down_to_the_rounding() {
         let (f, dt) = forcing(100.0);
         let refs: Vec<_> = sets().iter().map(|s| reference(s, &f, dt)).collect();
-        let errs: Vec<(f64, f64)> = [2, 4, 8, 16, 32, 64, 128, 256]
+        let errs: Vec<(f64, f64)> = [2, 4, 8, 16]
             .iter()
             .map(|&k| errors(&f, dt, k, &refs))
             .collect();
@@ -243,12 +265,14 @@ mod tests {
             assert!(w[0].0 > 2.5 * w[1].0, "u: {errs:?}");
             assert!(w[0].1 > 1.5 * w[1].1, "energy: {errs:?}");
         }
-        let order = |first: f64, last: f64| (first / last).log2() / 7.0;
-        let (first, last) = (errs[0], errs[7]);
+        let order = |first: f64, last: f64| (first / last).log2() / 3.0;
+        let (first, last) = (errs[0], errs[3]);
         let (ou, oe) = (order(first.0, last.0), order(first.1, last.1));
         assert!((1.8..2.6).contains(&ou), "u: order {ou}, {errs:?}");
         assert!((1.8..3.0).contains(&oe), "energy: order {oe}, {errs:?}");
-        assert!(last.0 < 1e-7 && last.1 < 1e-7, "{errs:?}");
+        let floor = 16.0 * f64::from(f32::EPSILON);
+        let (eu, ee) = errors(&f, dt, 256, &refs);
+        assert!(eu < floor && ee < floor, "{eu:e} {ee:e} against {floor:e}");
     }
 
     /// Each lane is its own oscillator: a set simulated in lane 5 among others gives bit for bit
@@ -268,13 +292,15 @@ mod tests {
 
     /// alpha = 1: the linear damped oscillator, whose rate is smooth, so RK4 shows its fourth
     /// order; z carries no force and no energy. Checked against the exact response to a step
-    /// force, u = F/k (1 - e^(-xi w0 t) (cos wd t + xi/sqrt(1 - xi^2) sin wd t)).
+    /// force, u = F/k (1 - e^(-xi w0 t) (cos wd t + xi/sqrt(1 - xi^2) sin wd t)), at steps of
+    /// 0.8 to 0.1 w0^-1, where the error (2.5e-2 to 6.1e-6 of F/k) is far above the `f32`
+    /// rounding (about 3e-7 here).
     #[test]
     fn alpha_one_is_the_linear_oscillator_at_fourth_order() {
         let (w0sq, xi, f) = (400.0, 0.05, 2.0);
         let base = BoucWen::new(w0sq, 1.0, 1.5, 0.5, 0.5).unwrap();
         let lanes = BoucWenLanes::new(&[(base, xi)]).unwrap();
-        let dt = 0.01;
+        let dt = 0.04;
         let forcing = vec![f; 401];
         let w0 = f64::sqrt(w0sq);
         let wd = w0 * (1.0 - xi * xi).sqrt();
@@ -286,7 +312,7 @@ mod tests {
                 let exact = f / w0sq
                     * (1.0
                         - decay * ((wd * t).cos() + xi / (1.0 - xi * xi).sqrt() * (wd * t).sin()));
-                worst = worst.max((s.u[0] - exact).abs() / (f / w0sq));
+                worst = worst.max((f64::from(s.u[0]) - exact).abs() / (f / w0sq));
                 assert_eq!(s.energy[0], 0.0);
                 i += 1;
             });
@@ -297,7 +323,7 @@ mod tests {
             let ratio = w[0] / w[1];
             assert!((14.0..18.5).contains(&ratio), "{errs:?}");
         }
-        assert!(errs[3] < 1e-7, "{errs:?}");
+        assert!(errs[3] < 1e-5, "{errs:?}");
     }
 
     #[test]

@@ -3,9 +3,9 @@
 //! The evolutionary search only compares candidates; the solution it chooses is scored again with
 //! the core's error-controlled oscillator ([`Problem::scores`]), and so is every member of the
 //! front that `--pareto` writes. So the search may use [`BoucWenLanes`], at one step a sample
-//! about 12x faster a simulation than the error-controlled [`Sdof`](hysteresis::bwbn::Sdof) on
-//! the Bouc-Wen benchmark problem (docs/benchmarks.md), provided it is accurate enough to rank
-//! candidates.
+//! about 35x cheaper a simulation than the error-controlled [`Sdof`](hysteresis::bwbn::Sdof) on
+//! the Bouc-Wen benchmark problem (0.058 ms against 2.1 ms, docs/benchmarks.md), provided it is
+//! accurate enough to rank candidates.
 //! [`SearchModel::for_problem`] chooses its RK4 steps a sample, doubling from 1 to
 //! [`MAX_SUBSTEPS`], as the fewest for which
 //!
@@ -29,8 +29,9 @@ use hysteresis::bwbn::{BoucWen, EffectSet};
 /// with the core.
 pub const SEARCH_TOLERANCE: f64 = 1e-3;
 
-/// Most RK4 steps a sample: at 8 a candidate costs about as much as with the core's adaptive
-/// Dormand-Prince at its floor of one sub-step a sample (docs/benchmarks.md).
+/// Most RK4 steps a sample: at 8 a candidate costs a quarter of the core's adaptive
+/// Dormand-Prince at its floor of one sub-step a sample (docs/benchmarks.md); past that the
+/// second-order convergence of fixed steps on this model gains little accuracy a step.
 pub const MAX_SUBSTEPS: usize = 8;
 
 /// Points checked besides the start: two batches of lanes in all.
@@ -195,10 +196,10 @@ impl SearchModel {
         lanes.simulate(&self.forcing, self.dt, self.substeps, |s| {
             let restoring = lanes.restoring(s);
             for (l, p) in out.iter_mut().enumerate() {
-                p.output.push(s.u[l]);
-                p.displacement.push(s.u[l]);
-                p.force.push(restoring[l] * self.mass);
-                p.energy.push(s.energy[l] * self.mass);
+                p.output.push(f64::from(s.u[l]));
+                p.displacement.push(f64::from(s.u[l]));
+                p.force.push(f64::from(restoring[l]) * self.mass);
+                p.energy.push(f64::from(s.energy[l]) * self.mass);
             }
         });
         let mut lanes_out = out.into_iter();
