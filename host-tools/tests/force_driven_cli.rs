@@ -125,7 +125,10 @@ fn nsga2_searches_with_the_fixed_step_model_and_reports_the_core() {
     let summary: Value = serde_json::from_slice(&out.stdout).unwrap();
     let search = &summary["search_model"];
     assert_eq!(search["method"], "rk4", "{summary}");
-    assert_eq!(search["lanes"].as_u64(), Some(8));
+    assert_eq!(
+        search["lanes"].as_u64(),
+        Some(hyst::fit::lanes::LANES as u64)
+    );
     let steps = search["steps_per_sample"].as_u64().unwrap();
     assert!((1..=8).contains(&steps), "{search}");
     assert!(
@@ -184,7 +187,10 @@ fn nsga2_searches_with_the_fixed_step_model_and_reports_the_core() {
         String::from_utf8(ok(nsga2_fit(&["--population", "16", "--generations", "2"])).stdout)
             .unwrap();
     assert!(
-        text.contains("Note: the search simulated 8 candidates at a time by RK4"),
+        text.contains(&format!(
+            "Note: the search simulated {} candidates at a time by RK4",
+            hyst::fit::lanes::LANES
+        )),
         "{text}"
     );
 }
