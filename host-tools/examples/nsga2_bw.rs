@@ -239,11 +239,9 @@ fn main() {
     };
     let floor = problem.rms_any(&TRUTH).expect("the truth simulates");
     let start = Instant::now();
-    let sims = if std::env::var_os("SIMS_ONLY").is_some() {
-        std::env::var("SIMS_ONLY").unwrap().parse().unwrap_or(50)
-    } else {
-        200
-    };
+    let sims_only = std::env::var_os("SIMS_ONLY")
+        .map(|v| v.to_str().and_then(|s| s.parse().ok()).unwrap_or(50));
+    let sims = sims_only.unwrap_or(200);
     let xs: Vec<Vec<f64>> = (0..sims)
         .map(|i| {
             let f = 0.9 + 0.2 * i as f64 / sims as f64;
@@ -264,7 +262,7 @@ fn main() {
         1e3 * per_sim,
         1.0 / per_sim
     );
-    if std::env::var_os("SIMS_ONLY").is_some() {
+    if sims_only.is_some() {
         return;
     }
     for seed in seeds {

@@ -113,11 +113,11 @@ impl BoucWenLanes {
         mut sink: impl FnMut(&LaneState),
     ) {
         let mut s = LaneState::default();
-        let mut lost = LaneState::default();
         if forcing.is_empty() {
             return;
         }
         sink(&s);
+        let mut lost = LaneState::default();
         let k = substeps.max(1);
         let h = (dt / k as f64) as f32;
         let (h2, h6) = (0.5 * h, h / 6.0);
@@ -127,9 +127,8 @@ impl BoucWenLanes {
         for w in forcing.windows(2) {
             let slope = (w[1] - w[0]) / k as f64;
             for j in 0..k {
-                let f0 = w[0] + slope * j as f64;
-                let (fm, f1) = ((f0 + 0.5 * slope) as f32, (f0 + slope) as f32);
-                let f0 = f0 as f32;
+                let start = w[0] + slope * j as f64;
+                let [f0, fm, f1] = [start, start + 0.5 * slope, start + slope].map(|f| f as f32);
                 let k1 = self.rates(&s.u, &s.v, &s.z, f0);
                 let k2 = self.rates(
                     &stage(&s.u, &k1.u, h2),

@@ -34,7 +34,7 @@ pub const SEARCH_TOLERANCE: f64 = 1e-3;
 /// second-order convergence of fixed steps on this model gains little accuracy a step.
 pub const MAX_SUBSTEPS: usize = 8;
 
-/// Points checked besides the start: two batches of lanes in all.
+/// Points checked besides the start: one batch of [`LANES`](super::LANES) in all.
 const CHECKED: usize = 15;
 
 /// The checked points must be within this share of [`SEARCH_TOLERANCE`]: they sample the bounds,
