@@ -102,32 +102,34 @@ impl Target {
         }
     }
 
-    /// Scores of a prediction. `applied` is the force of the energy integral
-    /// for the model: the predicted force (quasi-static) or the measured
-    /// applied force (dynamic), integrated over the model's displacement.
+    /// Scores of a prediction. The energy integral of the model is taken over its displacement
+    /// with its predicted force (quasi-static) or the measured applied force (dynamic).
     pub fn score(&self, exp: &Experiment, pred: &Prediction) -> Scores {
         let force = match exp.drive {
             super::experiment::Drive::Displacement => &pred.force,
             super::experiment::Drive::Force { .. } => &exp.input,
         };
-        let e_hat = energy_input(&pred.displacement, force);
-        let (mut f1, mut f2, mut sq) = (0.0, 0.0f64, 0.0);
-        for ((y, yh), w) in self.output.iter().zip(&pred.output).zip(&self.weight) {
-            let d = (y - yh).abs();
-            f1 += d / w;
-            f2 = f2.max(d);
-            sq += d * d;
+        let mut running = self.running::<1>();
+        for ((y_hat, u_hat), f) in pred.output.iter().zip(&pred.displacement).zip(force) {
+            running.push(&[*y_hat], &[*u_hat], &[*f]);
         }
-        let f4 = self
-            .energy
-            .iter()
-            .zip(&e_hat)
-            .fold(0.0f64, |a, (e, eh)| a.max((e - eh).abs()));
-        let f3 = (self.energy.last().unwrap_or(&0.0) - e_hat.last().unwrap_or(&0.0)).abs();
-        let nrmse = (sq / self.output.len().max(1) as f64).sqrt() / self.rms.max(f64::MIN_POSITIVE);
-        Scores {
-            ortiz: [f1, f2, f3, f4],
-            nrmse,
+        let [scores] = running.scores();
+        scores
+    }
+
+    /// The scores accumulated sample by sample for `L` predictions that are not stored (the
+    /// fixed-step search model hands over its lanes' samples as it computes them).
+    pub fn running<const L: usize>(&self) -> Running<'_, L> {
+        Running {
+            target: self,
+            i: 0,
+            f1: [0.0; L],
+            f2: [0.0; L],
+            sq: [0.0; L],
+            e_hat: [0.0; L],
+            f4: [0.0; L],
+            last_u: [0.0; L],
+            last_f: [0.0; L],
         }
     }
 
@@ -148,6 +150,74 @@ impl Target {
     }
 }
 
+/// [`Target::score`] one sample at a time ([`Target::running`]) for `L` predictions at once
+/// (vector lanes): the sums and maxima of the objectives, and each model's energy input by the
+/// trapezoidal rule as [`energy_input`] does.
+#[derive(Clone, Debug)]
+pub struct Running<'a, const L: usize> {
+    target: &'a Target,
+    /// Samples pushed.
+    i: usize,
+    f1: [f64; L],
+    f2: [f64; L],
+    sq: [f64; L],
+    /// The models' energy input to the last sample.
+    e_hat: [f64; L],
+    f4: [f64; L],
+    /// The last sample's displacements and forces.
+    last_u: [f64; L],
+    last_f: [f64; L],
+}
+
+impl<const L: usize> Running<'_, L> {
+    /// The models' next samples: outputs, displacements and the forces of their energy
+    /// integrals. Samples beyond the record's are ignored, as [`Target::score`]'s comparison
+    /// ends with it.
+    #[inline]
+    pub fn push(&mut self, y_hat: &[f64; L], u_hat: &[f64; L], force: &[f64; L]) {
+        let t = self.target;
+        let (Some(&y), Some(&w), Some(&e)) = (
+            t.output.get(self.i),
+            t.weight.get(self.i),
+            t.energy.get(self.i),
+        ) else {
+            return;
+        };
+        let first = self.i == 0;
+        for l in 0..L {
+            if !first {
+                self.e_hat[l] += 0.5 * (force[l] + self.last_f[l]) * (u_hat[l] - self.last_u[l]);
+            }
+            let d = (y - y_hat[l]).abs();
+            self.f1[l] += d / w;
+            self.f2[l] = self.f2[l].max(d);
+            self.sq[l] += d * d;
+            self.f4[l] = self.f4[l].max((e - self.e_hat[l]).abs());
+        }
+        self.last_u = *u_hat;
+        self.last_f = *force;
+        self.i += 1;
+    }
+
+    /// The scores of the samples pushed, one per lane. Before the last sample of the record,
+    /// `f3` compares the energies at the last sample pushed.
+    pub fn scores(&self) -> [Scores; L] {
+        let t = self.target;
+        let last = self.i.checked_sub(1).and_then(|k| t.energy.get(k));
+        let e_end = last.copied().unwrap_or(0.0);
+        let n = t.output.len().max(1) as f64;
+        core::array::from_fn(|l| Scores {
+            ortiz: [
+                self.f1[l],
+                self.f2[l],
+                (e_end - self.e_hat[l]).abs(),
+                self.f4[l],
+            ],
+            nrmse: (self.sq[l] / n).sqrt() / t.rms.max(f64::MIN_POSITIVE),
+        })
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -164,6 +234,56 @@ mod tests {
         assert_eq!(w[0], 1.0, "held before the first peak");
         let w = envelope(&[0.0, 0.01, 10.0], 0.1);
         assert_eq!(w[0], 1.0, "floored at 10% of the 10.0 peak");
+    }
+
+    /// The objectives of a three-sample quasi-static record, worked out by hand: measured force
+    /// 0, 2, -1 and predicted 0, 1, -2 over the displacements 0, 1, 0. Envelope weights (peaks
+    /// 2 and 1, floor 0.2): 0.2, 2, 1. Energies by the trapezoidal rule: measured 0, 1, 0.5,
+    /// model 0, 0.5, 1.
+    #[test]
+    fn scores_of_a_record_worked_out_by_hand() {
+        use super::super::experiment::Drive;
+        let exp = Experiment {
+            input: vec![0.0, 1.0, 0.0],
+            output: vec![0.0, 2.0, -1.0],
+            drive: Drive::Displacement,
+        };
+        let force = vec![0.0, 1.0, -2.0];
+        let pred = Prediction {
+            output: force.clone(),
+            displacement: exp.input.clone(),
+            force,
+            energy: vec![0.0; 3],
+        };
+        let expected = Scores {
+            // f1 = 0/0.2 + 1/2 + 1/1; f2 = 1; f3 = |0.5 - 1|; f4 = max(0, 0.5, 0.5)
+            ortiz: [1.5, 1.0, 0.5, 0.5],
+            // sqrt(2/3) / sqrt(5/3)
+            nrmse: (2.0f64 / 5.0).sqrt(),
+        };
+        let target = Target::new(&exp, ENVELOPE_FLOOR);
+        let close = |a: Scores| {
+            let pairs = a.ortiz.iter().zip(&expected.ortiz);
+            pairs
+                .chain([(&a.nrmse, &expected.nrmse)])
+                .all(|(x, y)| (x - y).abs() < 1e-15)
+        };
+        assert!(
+            close(target.score(&exp, &pred)),
+            "{:?}",
+            target.score(&exp, &pred)
+        );
+        // The same prediction in the second of two lanes, next to a perfect one.
+        let mut lanes = target.running::<2>();
+        for i in 0..3 {
+            let y = [exp.output[i], pred.output[i]];
+            let u = [exp.input[i]; 2];
+            lanes.push(&y, &u, &y);
+        }
+        let [perfect, lane] = lanes.scores();
+        assert!(close(lane), "{lane:?}");
+        assert_eq!(perfect.ortiz, [0.0; 4]);
+        assert_eq!(perfect.nrmse, 0.0);
     }
 
     #[test]

@@ -409,11 +409,7 @@ impl super::nsga2::Problem for Ortiz<'_> {
     }
     fn evaluate_batch(&self, xs: &[&[f64]]) -> Vec<super::nsga2::Evaluation> {
         let scores: Vec<Option<Scores>> = match &self.search {
-            Some(model) => model
-                .predict(self.problem, xs)
-                .iter()
-                .map(|p| Some(self.problem.target.score(&self.problem.exp, p.as_ref()?)))
-                .collect(),
+            Some(model) => model.scores(self.problem, xs),
             None => xs.iter().map(|x| self.problem.scores(x)).collect(),
         };
         xs.iter()

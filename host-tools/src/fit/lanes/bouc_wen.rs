@@ -77,11 +77,6 @@ impl BoucWenLanes {
         })
     }
 
-    /// Mass-normalised restoring force `alpha w0^2 u + (1 - alpha) w0^2 z` of each lane.
-    pub fn restoring(&self, s: &LaneState) -> Lanes {
-        core::array::from_fn(|i| self.k_el[i] * s.u[i] + self.k_hys[i] * s.z[i])
-    }
-
     #[inline(always)]
     fn rates(&self, u: &Lanes, v: &Lanes, z: &Lanes, f: f32) -> Rates {
         let zn = pow_abs(z, &self.n);

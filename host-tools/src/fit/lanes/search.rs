@@ -18,8 +18,9 @@
 //! Otherwise (more steps would cost about as much as the core's adaptive steps), and for every
 //! other model or drive, the search uses the core's oscillator.
 
-use super::BoucWenLanes;
-use crate::fit::experiment::{Drive, Prediction};
+use super::{BoucWenLanes, LANES};
+use crate::fit::experiment::Drive;
+use crate::fit::objectives::Scores;
 use crate::fit::problem::Problem;
 use hysteresis::bwbn::{BoucWen, EffectSet};
 
@@ -34,7 +35,7 @@ pub const SEARCH_TOLERANCE: f64 = 1e-3;
 /// second-order convergence of fixed steps on this model gains little accuracy a step.
 pub const MAX_SUBSTEPS: usize = 8;
 
-/// Points checked besides the start: one batch of [`LANES`](super::LANES) in all.
+/// Points checked besides the start: one batch of [`LANES`] in all.
 const CHECKED: usize = 15;
 
 /// The checked points must be within this share of [`SEARCH_TOLERANCE`]: they sample the bounds,
@@ -130,13 +131,10 @@ impl SearchModel {
                 // The fixed-step runs alone: a run that blows up fails the check here (more
                 // steps are tried), where the search would hand it to the core.
                 let worst = xs
-                    .chunks(super::LANES)
+                    .chunks(LANES)
                     .flat_map(|chunk| model.simulate(problem, chunk))
                     .zip(&references)
-                    .map(|(p, r)| match p {
-                        Some(p) => (problem.target.score(&problem.exp, &p).nrmse - r.1).abs(),
-                        None => f64::INFINITY,
-                    })
+                    .map(|(s, r)| s.map_or(f64::INFINITY, |s| (s.nrmse - r.1).abs()))
                     .fold(0.0f64, f64::max);
                 if worst <= MARGIN * SEARCH_TOLERANCE {
                     model.checked_error = worst;
@@ -152,26 +150,27 @@ impl SearchModel {
     pub fn summary(&self) -> SearchSummary {
         SearchSummary {
             substeps: self.substeps,
-            lanes: super::LANES,
+            lanes: LANES,
             checked_error: self.checked_error,
         }
     }
 
-    /// Predictions at up to [`LANES`](super::LANES) points, simulated together. Where a point's
+    /// Scores at up to [`LANES`] points, simulated together. Where a point's
     /// fixed-step simulation is not finite (RK4 is unstable for a stiff enough hysteretic
     /// spring: large n and beta at high velocity), the core simulates it instead, so that the
     /// search never discards a candidate the core can simulate. `None` where neither can.
-    pub fn predict(&self, problem: &Problem, xs: &[&[f64]]) -> Vec<Option<Prediction>> {
+    pub fn scores(&self, problem: &Problem, xs: &[&[f64]]) -> Vec<Option<Scores>> {
         self.simulate(problem, xs)
             .into_iter()
             .zip(xs)
-            .map(|(p, x)| p.or_else(|| problem.predict(x)))
+            .map(|(s, x)| s.or_else(|| problem.scores(x)))
             .collect()
     }
 
-    /// The fixed-step predictions alone: `None` where a point's parameters are rejected or its
-    /// simulation is not finite.
-    fn simulate(&self, problem: &Problem, xs: &[&[f64]]) -> Vec<Option<Prediction>> {
+    /// The fixed-step scores alone: `None` where a point's parameters are rejected or its
+    /// simulation is not finite. Each lane's samples go straight into its objectives
+    /// ([`Target::running`](crate::fit::objectives::Target::running)); no prediction is stored.
+    fn simulate(&self, problem: &Problem, xs: &[&[f64]]) -> Vec<Option<Scores>> {
         let sets: Vec<Option<(BoucWen<f64>, f64)>> = xs
             .iter()
             .map(|x| {
@@ -184,30 +183,22 @@ impl SearchModel {
         let Some(lanes) = BoucWenLanes::new(&valid) else {
             return vec![None; xs.len()];
         };
-        let n = self.forcing.len();
-        let mut out: Vec<Prediction> = (0..valid.len())
-            .map(|_| Prediction {
-                output: Vec::with_capacity(n),
-                displacement: Vec::with_capacity(n),
-                force: Vec::with_capacity(n),
-                energy: Vec::with_capacity(n),
-            })
-            .collect();
+        let mut running = problem.target.running::<LANES>();
+        // The energy input of a force-driven model is the applied force over its displacement.
+        let mut applied = problem.exp.input.iter();
         lanes.simulate(&self.forcing, self.dt, self.substeps, |s| {
-            let restoring = lanes.restoring(s);
-            for (l, p) in out.iter_mut().enumerate() {
-                p.output.push(f64::from(s.u[l]));
-                p.displacement.push(f64::from(s.u[l]));
-                p.force.push(f64::from(restoring[l]) * self.mass);
-                p.energy.push(f64::from(s.energy[l]) * self.mass);
-            }
+            let Some(&f) = applied.next() else {
+                return;
+            };
+            let u = s.u.map(f64::from);
+            running.push(&u, &u, &[f; LANES]);
         });
-        let mut lanes_out = out.into_iter();
+        let mut lanes_out = running.scores().into_iter().take(valid.len());
         sets.iter()
             .map(|set| {
                 set.as_ref()?;
-                let p = lanes_out.next()?;
-                p.output.iter().all(|u| u.is_finite()).then_some(p)
+                // An output that is not finite makes the squared error not finite.
+                lanes_out.next().filter(|s| s.nrmse.is_finite())
             })
             .collect()
     }
@@ -285,24 +276,15 @@ mod tests {
         .unwrap()
     }
 
-    /// Largest displacement difference between the search model and the core at `x`,
-    /// relative to the record's RMS, and the two NRMSEs; `None` where the core cannot simulate
-    /// `x` (its sub-step budget runs out).
-    fn compare(model: &SearchModel, p: &Problem, x: &[f64]) -> Option<(f64, f64, f64)> {
-        let core = p.predict(x)?;
+    /// The NRMSE of the search model and of the core at `x`; `None` where the core cannot
+    /// simulate `x` (its sub-step budget runs out).
+    fn compare(model: &SearchModel, p: &Problem, x: &[f64]) -> Option<(f64, f64)> {
+        let core = p.scores(x)?.nrmse;
         let fast = model
-            .predict(p, &[x])
+            .scores(p, &[x])
             .remove(0)
-            .expect("a prediction where the core has one");
-        let y = &p.exp.output;
-        let rms = (y.iter().map(|v| v * v).sum::<f64>() / y.len() as f64).sqrt();
-        let worst = fast
-            .output
-            .iter()
-            .zip(&core.output)
-            .fold(0.0f64, |a, (u, v)| a.max((u - v).abs()));
-        let score = |pred: &Prediction| p.target.score(&p.exp, pred).nrmse;
-        Some((worst / rms, score(&fast), score(&core)))
+            .expect("scores where the core has them");
+        Some((fast.nrmse, core))
     }
 
     /// The step count is the smallest that passes: with half as many steps, the NRMSE at one of
@@ -319,7 +301,7 @@ mod tests {
                     .filter_map(|x| {
                         let core = p.scores(x)?.nrmse;
                         let fast = m.simulate(&p, &[x]).remove(0);
-                        let fast = fast.map_or(f64::INFINITY, |f| p.target.score(&p.exp, &f).nrmse);
+                        let fast = fast.map_or(f64::INFINITY, |s| s.nrmse);
                         Some((fast - core).abs())
                     })
                     .fold(0.0f64, f64::max)
@@ -381,7 +363,7 @@ mod tests {
                         l + (h - l) * (seed >> 11) as f64 / (1u64 << 53) as f64
                     })
                     .collect();
-                if let Some((_, fast, core)) = compare(&model, &p, &x) {
+                if let Some((fast, core)) = compare(&model, &p, &x) {
                     worst = worst.max((fast - core).abs());
                     compared += 1;
                 }
