@@ -58,7 +58,7 @@ pub struct Observer<S> {
 }
 
 /// A BWBN oscillator under a mass-normalised force history (see the
-/// [module docs](self)).
+/// documentation of `src/bwbn/dynamics.rs`).
 ///
 /// ```
 /// use hysteresis::bwbn::{BoucWen, BwbnParams, Sdof};

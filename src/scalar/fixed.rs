@@ -29,7 +29,7 @@ const ONE_RAW: i32 = 1 << FRAC;
 const POS_INF: i32 = i32::MAX;
 const NEG_INF: i32 = i32::MIN;
 
-/// Saturating Q15.16 fixed-point number (see the [module docs](self)).
+/// Saturating Q15.16 fixed-point number (see the documentation of `src/scalar/fixed.rs`).
 #[derive(Clone, Copy, Default, PartialEq, Eq, PartialOrd, Ord, Hash)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct Fixed(i32);

@@ -5,7 +5,7 @@
 //! large gain K makes the simulation track the measurement whatever p is, and
 //! the objective `J(p, lambda) = 1/2 ∫ (x1e - x1)^2 dt` (eq. 4.5) is nearly
 //! convex. Lambda is stepped down to 0; at each value a bounded local
-//! optimiser ([`lsq::minimize`](super::lsq::minimize)) minimises J starting
+//! optimiser ([`lsq::minimize`]) minimises J starting
 //! from the previous minimiser. At lambda = 0 the coupling is gone and J is
 //! the plain output error, whose nearest local minimum from a remote start is
 //! often not the global one (the thesis' pendulum: from p = 15 a plain local

@@ -1,5 +1,5 @@
 //! Fitting the polygonal hysteresis model (thesis ch. 5) to a torque-twist
-//! record with the bounded least squares of [`lsq`](super::lsq): both primary
+//! record with the bounded least squares of [`lsq`]: both primary
 //! curves (§5.2.1) and the coefficients of eqs 1-6 at once, minimising the
 //! NRMSE of the torque.
 //!

@@ -16,9 +16,9 @@
 //! # Adding an effect
 //!
 //! 1. Write a module here with a `Copy` parameter struct, its `PARAMS`
-//!    ([`ParamSpec`](super::ParamSpec)s: name, symbol, equation, the value that
+//!    ([`ParamSpec`]s: name, symbol, equation, the value that
 //!    switches it off, units, fitting range), a validating constructor that
-//!    returns [`ParamError`](super::ParamError) naming the field and rule, and an
+//!    returns [`ParamError`] naming the field and rule, and an
 //!    [`Effect`] implementation.
 //! 2. Register it in [`EffectKind`] and [`Effects`] (name, field, order of
 //!    application).

@@ -1,4 +1,4 @@
-//! `|z|^n = exp(n ln|z|)` on [`LANES`] `f32` values at once, branch-free so that the compiler
+//! `|z|^n = exp(n ln|z|)` on [`LANES`](super::LANES) `f32` values at once, branch-free so that the compiler
 //! keeps every lane in vector registers (AVX2 with the repository's `x86-64-v3` build: eight
 //! lanes a register).
 //!
