@@ -77,13 +77,20 @@ pub fn envelope(y: &[f64], floor: f64) -> Vec<f64> {
     w
 }
 
+/// `∫ F du` from `(u0, f0)` to `(u1, f1)` by the trapezoidal rule: one term of [`energy_input`]
+/// and of [`Running`].
+#[inline(always)]
+fn trapezoid((u0, f0): (f64, f64), (u1, f1): (f64, f64)) -> f64 {
+    0.5 * (f1 + f0) * (u1 - u0)
+}
+
 /// Cumulative `∫ F du` by the trapezoidal rule.
 pub fn energy_input(u: &[f64], f: &[f64]) -> Vec<f64> {
     let mut e = Vec::with_capacity(u.len());
     let mut acc = 0.0;
     e.push(0.0);
     for i in 1..u.len() {
-        acc += 0.5 * (f[i] + f[i - 1]) * (u[i] - u[i - 1]);
+        acc += trapezoid((u[i - 1], f[i - 1]), (u[i], f[i]));
         e.push(acc);
     }
     e
@@ -152,7 +159,7 @@ impl Target {
 
 /// [`Target::score`] one sample at a time ([`Target::running`]) for `L` predictions at once
 /// (vector lanes): the sums and maxima of the objectives, and each model's energy input by the
-/// trapezoidal rule as [`energy_input`] does.
+/// same trapezoidal rule as [`energy_input`].
 #[derive(Clone, Debug)]
 pub struct Running<'a, const L: usize> {
     target: &'a Target,
@@ -186,7 +193,7 @@ impl<const L: usize> Running<'_, L> {
         let first = self.i == 0;
         for l in 0..L {
             if !first {
-                self.e_hat[l] += 0.5 * (force[l] + self.last_f[l]) * (u_hat[l] - self.last_u[l]);
+                self.e_hat[l] += trapezoid((self.last_u[l], self.last_f[l]), (u_hat[l], force[l]));
             }
             let d = (y - y_hat[l]).abs();
             self.f1[l] += d / w;

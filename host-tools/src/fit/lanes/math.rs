@@ -1,6 +1,6 @@
-//! `|z|^n = exp(n ln|z|)` on [`LANES`](super::LANES) `f32` values at once, branch-free so that the compiler
-//! keeps every lane in vector registers (AVX2 with the repository's `x86-64-v3` build: eight
-//! lanes a register).
+//! `|z|^n = exp(n ln|z|)` on [`LANES`](super::LANES) `f32` values at once, branch-free so that
+//! the compiler keeps every lane in vector registers (AVX2 with the repository's `x86-64-v3`
+//! build: eight lanes a register).
 //!
 //! The table-driven scalar `pow` of the core cannot be vectorised (its table lookups and special
 //! cases branch per value); these polynomials can:
