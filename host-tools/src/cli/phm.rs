@@ -138,6 +138,7 @@ pub fn fit(args: &FitArgs) -> Result<()> {
         (args.mass.is_some(), "--mass"),
         (args.pareto.is_some(), "--pareto"),
         (args.bits.is_some(), "--bits"),
+        (args.polish, "--polish"),
     ] {
         if given {
             bail!("{name} is for the Bouc-Wen fits; the PHM fit takes a twist-driven record");

@@ -71,6 +71,9 @@ pub struct Outcome {
     pub evaluations: usize,
     /// The fixed-step model an evolutionary search simulated with, if it used one.
     pub search: Option<SearchSummary>,
+    /// With [`Evolution::polish`]: the scores of the solution NSGA-II chose, which least squares
+    /// then refined into this outcome.
+    pub polished_from: Option<Scores>,
 }
 
 /// Progress reports of a running fit.
@@ -122,6 +125,11 @@ pub struct Evolution {
     /// Where to write the final Pareto front (physical parameter values and
     /// the four objectives), if anywhere.
     pub front_csv: Option<std::path::PathBuf>,
+    /// Refine the chosen solution by bounded least squares on the residuals of the predicted
+    /// output (a hybrid search: the evolution finds the basin, the local method its bottom, as
+    /// SciPy's differential evolution does by default). The thesis' method stops at the chosen
+    /// solution, so this is off by default.
+    pub polish: bool,
 }
 
 impl Default for Evolution {
@@ -134,6 +142,7 @@ impl Default for Evolution {
                 ..Nsga2::default()
             },
             front_csv: None,
+            polish: false,
         }
     }
 }
@@ -261,14 +270,44 @@ fn evolve(problem: &Problem, evolution: &Evolution, progress: &dyn Progress) -> 
     let sol = solution_at(problem, &chosen.variables).ok_or_else(|| {
         anyhow!("the chosen parameter set, or one next to it, cannot be simulated")
     })?;
-    let evaluations = outcome.evaluations + sol.evaluations;
-    let sol = lsq::Solution {
-        iterations: settings.generations,
-        ..sol
-    };
+    let mut evaluations = outcome.evaluations + sol.evaluations;
+    let search = ortiz.search_model().map(|m| m.summary());
+    if !evolution.polish {
+        let sol = lsq::Solution {
+            iterations: settings.generations,
+            ..sol
+        };
+        return Ok(Outcome {
+            search,
+            ..finish(problem, "nsga2", sol, evaluations)?
+        });
+    }
+    let chosen_scores = problem
+        .scores(&sol.x)
+        .ok_or_else(|| anyhow!("the chosen parameter set cannot be simulated"))?;
+    progress.stage(&format!(
+        "NSGA-II chose NRMSE {:.4e}; least squares from there",
+        chosen_scores.nrmse
+    ));
+    let (lo, hi) = problem.par.bounds();
+    let evals = AtomicUsize::new(0);
+    let residuals = LeastSquares::new(problem).counting(&evals);
+    let polished = lsq::minimize_observed(
+        &residuals,
+        &sol.x,
+        &lo,
+        &hi,
+        Options::default(),
+        |_, cost| progress.improved(evaluations + evals.load(Ordering::Relaxed), cost.sqrt()),
+    );
+    evaluations += evals.load(Ordering::Relaxed);
+    // Least squares only accepts steps that lower the cost, so its result is never worse than
+    // its start; a start it cannot simulate around leaves the chosen solution as it was.
+    let sol = polished.unwrap_or(sol);
     Ok(Outcome {
-        search: ortiz.search_model().map(|m| m.summary()),
-        ..finish(problem, "nsga2", sol, evaluations)?
+        search,
+        polished_from: Some(chosen_scores),
+        ..finish(problem, "nsga2+lsq", sol, evaluations)?
     })
 }
 
@@ -301,6 +340,7 @@ pub fn finish(
         identifiability,
         evaluations,
         search: None,
+        polished_from: None,
     })
 }
 
