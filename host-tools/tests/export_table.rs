@@ -253,3 +253,37 @@ fn the_precision_history_takes_the_read_options() {
     );
     assert!(!out.exists(), "a table was written for a failed export");
 }
+
+/// A force-driven fit (`hyst fit --mass`) holds the test's mass and damping besides the
+/// hysteretic spring: exported, its table is the spring's alone, byte for byte the table of the
+/// same file without `m` and `xi`, and a note says what was left out.
+#[test]
+fn a_force_driven_fit_exports_its_spring_and_says_so() {
+    let spring = r#"{"model": "bw", "k0": 6, "alpha": 0.2, "n": 1.2, "beta": 2, "gamma": -1,
+ "units": {"displacement": "mm", "force": "kN"}}"#;
+    let fitted = write(
+        "dynamic.json",
+        &spring.replace("\"gamma\": -1,", "\"gamma\": -1, \"xi\": 0.05, \"m\": 500,"),
+    );
+    let spring = write("spring.json", spring);
+    let table = |file: &str, name: &str| {
+        let out = tmp(name);
+        let o = ok(hyst(&[
+            "export",
+            file,
+            "--format",
+            "bin",
+            "--out",
+            out.to_str().unwrap(),
+        ]));
+        (std::fs::read(&out).unwrap(), stderr(&o))
+    };
+    let (dynamic, note) = table(&fitted, "dynamic.bin");
+    let (plain, quiet) = table(&spring, "spring.bin");
+    assert_eq!(dynamic, plain);
+    assert!(
+        note.contains("dynamic.json: m and xi belong to the oscillator of the force-driven test"),
+        "{note}"
+    );
+    assert!(!quiet.contains("note:"), "{quiet}");
+}

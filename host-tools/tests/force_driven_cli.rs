@@ -201,10 +201,20 @@ fn nsga2_searches_with_the_fixed_step_model_and_reports_the_core() {
 #[test]
 fn polish_refines_the_nsga2_choice_and_reports_both_errors() {
     let budget = ["--population", "16", "--generations", "10"];
-    let out = ok(nsga2_fit(&[&budget[..], &["--polish", "--json"]].concat()));
+    let file = tmp("polished.json").display().to_string();
+    let out = ok(nsga2_fit(
+        &[&budget[..], &["--polish", "--json", "--out", &file]].concat(),
+    ));
     let summary: Value = serde_json::from_slice(&out.stdout).unwrap();
     assert_eq!(summary["method"], "nsga2+lsq", "{summary}");
     let chosen = summary["polished_from"]["nrmse"].as_f64().unwrap();
+    // The parameter file keeps where the polish started, for whoever reads the fit later.
+    let saved: Value = serde_json::from_str(&std::fs::read_to_string(&file).unwrap()).unwrap();
+    assert_eq!(saved["fit"]["method"], "nsga2+lsq");
+    assert_eq!(
+        saved["fit"]["polished_from"]["nrmse"].as_f64(),
+        Some(chosen)
+    );
     let nrmse = summary["nrmse"].as_f64().unwrap();
     // The record is RK4 at 2 ms (no noise): what is left is that integrator's error, 1.9e-5.
     assert!(

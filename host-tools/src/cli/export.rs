@@ -49,6 +49,9 @@ fn parse_scalar(s: &str) -> Result<ScalarKind, String> {
 /// Runs `hyst export`.
 pub fn run(args: ExportArgs) -> Result<()> {
     let src = export::read(&args.fits)?;
+    for note in &src.notes {
+        eprintln!("note: {note}");
+    }
     let history = read_history(&args)?;
     let bytes = export::encode(&src, args.scalar)?;
     let header = *Table::parse(&bytes).map_err(|e| anyhow!("{e}"))?.header();

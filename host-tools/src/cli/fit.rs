@@ -186,7 +186,7 @@ pub fn fit_json(
         extra.push(("m", mass * 1e6));
     }
     let limit = Some(candidate.params.energy_limit());
-    let meta = json!({
+    let mut meta = json!({
         "data": data.display().to_string(),
         "method": outcome.method,
         "nrmse": outcome.scores.nrmse,
@@ -195,6 +195,13 @@ pub fn fit_json(
         "seconds": seconds,
         "identifiability": outcome.identifiability,
     });
+    if let Some(chosen) = &outcome.polished_from {
+        meta["polished_from"] = json!({
+            "method": "nsga2",
+            "nrmse": chosen.nrmse,
+            "ortiz": chosen.ortiz,
+        });
+    }
     Ok(to_json(
         problem.par.spec,
         &outcome.values,

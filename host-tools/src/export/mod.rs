@@ -51,6 +51,8 @@ pub struct Sources {
     pub elements: Elements,
     /// The units they share (empty if none states them).
     pub units: Units,
+    /// What was read but is not part of the table, a line each.
+    pub notes: Vec<String>,
 }
 
 /// One element's units as `(displacement, force)`, if its file states them.
@@ -70,6 +72,7 @@ pub fn read(paths: &[PathBuf]) -> Result<Sources> {
     let mut bwbn = vec![];
     let mut phm = vec![];
     let mut units: Option<(PathBuf, (String, String))> = None;
+    let mut notes = vec![];
     for path in paths {
         let text = std::fs::read_to_string(path)
             .with_context(|| format!("{}: cannot read", path.display()))?;
@@ -94,7 +97,22 @@ pub fn read(paths: &[PathBuf]) -> Result<Sources> {
                     path.display()
                 );
             }
-            let (p, _) = f.build(spec, false)?;
+            // A force-driven fit also holds the test's mass and damping (thesis eq. 3.3); the
+            // element is the hysteretic spring alone.
+            let (p, _) = f.build(spec, true)?;
+            let dynamic: Vec<&str> = ["m", "xi"]
+                .into_iter()
+                .filter(|k| f.values.contains_key(*k))
+                .collect();
+            if !dynamic.is_empty() {
+                notes.push(format!(
+                    "{}: {} belong{} to the oscillator of the force-driven test it was fitted on, \
+                     not to the element (the hysteretic spring of thesis eq. 3.3): not in the table",
+                    path.display(),
+                    dynamic.join(" and "),
+                    if dynamic.len() == 1 { "s" } else { "" }
+                ));
+            }
             if let Some(first) = bwbn.first().map(BwbnParams::effect_set) {
                 if first != p.effect_set() {
                     bail!(
@@ -158,6 +176,7 @@ pub fn read(paths: &[PathBuf]) -> Result<Sources> {
         files: paths.to_vec(),
         elements,
         units,
+        notes,
     })
 }
 
