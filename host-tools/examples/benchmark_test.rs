@@ -1,7 +1,8 @@
 //! Simulates the two official test sets of the Bouc-Wen benchmark (Noel and
 //! Schoukens 2016) with a force-driven fit and prints the benchmark's figure
 //! of merit, the RMSE of the displacement in metres (PROVENANCE.md, eq. 6).
-//! `hyst simulate` drives a model with displacement only, hence this example.
+//! `hyst simulate` runs a force-driven record from rest; this example adds what the test sets
+//! need beyond that: warm-up periods for the steady-state multisine and its band-limited input.
 //!
 //! ```text
 //! hyst fit ../shared/data/boucwen-benchmark/csv/train_multisine_forgione.csv \
