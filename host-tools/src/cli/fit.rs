@@ -5,6 +5,7 @@ use super::ModelArg;
 use crate::data;
 use crate::fit::experiment::Experiment;
 use crate::fit::nsga2::{BinaryCrossover, Encoding, Nsga2};
+use crate::fit::objectives::Scores;
 use crate::fit::problem::Problem;
 use crate::fit::run::{self, Evolution, Method, Outcome, Progress};
 use crate::model::{to_json, PHM_MODEL};
@@ -169,6 +170,15 @@ pub fn load_timed(
     Ok((Experiment::from_record(&record, mass)?, time))
 }
 
+/// Where `--polish` started: the scores of the set NSGA-II chose.
+fn polished_from(chosen: &Scores) -> Value {
+    json!({
+        "method": "nsga2",
+        "nrmse": chosen.nrmse,
+        "ortiz": chosen.ortiz,
+    })
+}
+
 /// The fit as a parameter file with its `fit` metadata.
 pub fn fit_json(
     problem: &Problem,
@@ -196,11 +206,7 @@ pub fn fit_json(
         "identifiability": outcome.identifiability,
     });
     if let Some(chosen) = &outcome.polished_from {
-        meta["polished_from"] = json!({
-            "method": "nsga2",
-            "nrmse": chosen.nrmse,
-            "ortiz": chosen.ortiz,
-        });
+        meta["polished_from"] = polished_from(chosen);
     }
     Ok(to_json(
         problem.par.spec,
@@ -266,11 +272,7 @@ pub fn run(args: FitArgs) -> Result<()> {
                 "lanes": s.lanes,
                 "checked_error": s.checked_error,
             })),
-            "polished_from": outcome.polished_from.map(|s| json!({
-                "method": "nsga2",
-                "nrmse": s.nrmse,
-                "ortiz": s.ortiz,
-            })),
+            "polished_from": outcome.polished_from.as_ref().map(polished_from),
         });
         obj["params"] = file
             .as_object()
