@@ -10,10 +10,10 @@
 //! cargo run --release -p hysteresis-host --example benchmark_test -- bw-benchmark.json
 //! ```
 //!
-//! The simulation runs at the data's 750 Hz (x1: the oscillator's forcing is
-//! linear between samples, as in fitting) and, for the periodic multisine,
-//! also on the input interpolated band-limited x16 (12 kHz, as the project's
-//! test of the true model does). The multisine test file is one
+//! The simulation runs at the data's 750 Hz (x1), with the force linear
+//! between samples and with it cubic (`hyst fit --forcing cubic`), and, for
+//! the periodic multisine, also on the input interpolated band-limited x16
+//! (12 kHz, as the project's test of the true model does). The multisine test file is one
 //! steady-state period of a periodic input: two periods of warm-up precede
 //! the scored one. The sine sweep starts from rest and is simulated as is.
 //! The benchmark's true parameters go through the same path as a reference:
@@ -24,7 +24,7 @@
 mod common;
 
 use common::interpolate_periodic;
-use hyst::fit::experiment::{Drive, Experiment};
+use hyst::fit::experiment::{Between, Drive, Experiment};
 use hyst::model::{Extras, ParamFile};
 use hysteresis::bwbn::{BoucWen, BwbnParams, Control};
 use std::path::PathBuf;
@@ -53,7 +53,8 @@ fn read(path: &PathBuf) -> (Vec<f64>, Vec<f64>) {
 /// RMSE in metres of the model on a test set; `warmup` periods of the input
 /// are run first when the record is one period of a periodic input. With
 /// `factor > 1` the (periodic) input is interpolated band-limited by that
-/// factor and the model runs at `factor * 750` Hz.
+/// factor and the model runs at `factor * 750` Hz; `between` is the force
+/// between the (interpolated) samples.
 #[allow(clippy::too_many_arguments)]
 fn rmse_m(
     params: &BwbnParams<f64>,
@@ -64,6 +65,7 @@ fn rmse_m(
     y: &[f64],
     warmup: usize,
     factor: usize,
+    between: Between,
 ) -> Result<f64, String> {
     let n = u.len();
     let fine = if factor > 1 {
@@ -84,6 +86,7 @@ fn rmse_m(
         drive: Drive::Force {
             dt: 1.0 / (FS * factor as f64),
             mass: mass_kg * 1e-6,
+            between,
         },
     };
     let pred = exp
@@ -126,24 +129,26 @@ fn main() {
         fit.display()
     );
     println!(
-        "test set                   samples  rms(y) m    RMSE fit m  RMSE truth m (same path)"
+        "test set                          samples  rms(y) m    RMSE fit m  RMSE truth m (same path)"
     );
-    for (name, warmup, factor) in [
-        ("test_multisine.csv", 2, 1),
-        ("test_multisine.csv", 2, 16),
-        ("test_sinesweep.csv", 0, 1),
+    for (name, warmup, factor, between) in [
+        ("test_multisine.csv", 2, 1, Between::Linear),
+        ("test_multisine.csv", 2, 1, Between::Cubic),
+        ("test_multisine.csv", 2, 16, Between::Linear),
+        ("test_sinesweep.csv", 0, 1, Between::Linear),
+        ("test_sinesweep.csv", 0, 1, Between::Cubic),
     ] {
         let (u, y) = read(&dir.join(name));
         let rms = (y.iter().map(|v| v * v).sum::<f64>() / y.len() as f64).sqrt() * 1e-3;
-        let fitted = rmse_m(&params, &extras, xi, mass, &u, &y, warmup, factor);
-        let true_ = rmse_m(&truth, &none, xi_true, 2.0, &u, &y, warmup, factor);
-        let name = format!("{name} x{factor}");
+        let fitted = rmse_m(&params, &extras, xi, mass, &u, &y, warmup, factor, between);
+        let true_ = rmse_m(&truth, &none, xi_true, 2.0, &u, &y, warmup, factor, between);
+        let name = format!("{name} x{factor} {between}");
         let show = |r: &Result<f64, String>| match r {
             Ok(v) => format!("{v:.3e}"),
             Err(e) => format!("failed: {e}"),
         };
         println!(
-            "{name:<24} {:>7}  {rms:.3e}   {}   {}",
+            "{name:<31} {:>7}  {rms:.3e}   {}   {}",
             y.len(),
             show(&fitted),
             show(&true_)

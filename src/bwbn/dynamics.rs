@@ -11,8 +11,12 @@
 //! with `w0^2 = k/m` and `f = F/m`. The model parameters are the same
 //! [`BwbnParams`] as for the element, with `k0` set to `w0^2` (stiffness per
 //! unit mass, see [`Sdof::from_physical`]), so energies are per unit mass as
-//! in eq. 3.8. The forcing is taken as linear between samples, and each sample
-//! interval is integrated with the same error-controlled scheme as the element.
+//! in eq. 3.8. Within a step the forcing is linear between the samples
+//! ([`Sdof::step`]: all a controller reading a force sensor knows), or the
+//! cubic Hermite polynomial through the samples and their rates
+//! ([`Forcing::Hermite`]: for a recorded, band-limited force whose rates can
+//! be estimated from the neighbouring samples). Each step is integrated with
+//! the same error-controlled scheme as the element.
 //!
 //! [`Sdof::step_observed`] adds the observer coupling of thesis eq. 4.6,
 //! `x' = f(x, p, t) + lambda K e(t)` with `e = u_measured - u`, which makes the
@@ -55,6 +59,59 @@ pub struct Observer<S> {
     pub k_u: S,
     /// Gain on u'' (1/s^2).
     pub k_v: S,
+}
+
+/// The mass-normalised applied force within one step, from its value at the
+/// current time to the one at the end of the step.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum Forcing<S> {
+    /// Linear to `next` at the end of the step.
+    Linear {
+        /// Forcing at the end of the step.
+        next: S,
+    },
+    /// The cubic Hermite polynomial with value `next` at the end of the step
+    /// and rates (per second) `rate_now` and `rate_next` at its two ends. A
+    /// force that is itself a cubic in time is reproduced exactly.
+    Hermite {
+        /// Forcing at the end of the step.
+        next: S,
+        /// Rate of the forcing at the current time (1/s).
+        rate_now: S,
+        /// Rate of the forcing at the end of the step (1/s).
+        rate_next: S,
+    },
+}
+
+impl<S: Scalar> Forcing<S> {
+    /// The forcing at the end of the step.
+    pub fn next(&self) -> S {
+        match *self {
+            Forcing::Linear { next } | Forcing::Hermite { next, .. } => next,
+        }
+    }
+
+    /// `[c1, c2, c3]` of `f(t) = f0 + t (c1 + t (c2 + t c3))` over a step of
+    /// `dt` that starts at `f0`, or `None` when a value is not finite.
+    fn polynomial(&self, f0: S, dt: S) -> Option<[S; 3]> {
+        let c = match *self {
+            Forcing::Linear { next } => [(next - f0) / dt, S::ZERO, S::ZERO],
+            Forcing::Hermite {
+                next,
+                rate_now,
+                rate_next,
+            } => {
+                // Hermite basis on s = t / dt, collected in powers of t.
+                let secant = (next - f0) / dt;
+                let c2 = (S::from_i32(3) * secant - rate_now - rate_now - rate_next) / dt;
+                let c3 = (rate_now + rate_next - secant - secant) / (dt * dt);
+                [rate_now, c2, c3]
+            }
+        };
+        let finite = c.iter().all(|v| v.is_finite()) && self.next().is_finite();
+        finite.then_some(c)
+    }
 }
 
 /// A BWBN oscillator under a mass-normalised force history (see the
@@ -201,16 +258,22 @@ impl<S: Scalar, X: Effect<S>> Sdof<S, X> {
     /// Advances by `dt` with the forcing going linearly from its current value
     /// to `f_next`. On error the state is unchanged.
     pub fn step(&mut self, dt: S, f_next: S) -> Result<SdofState<S>, StepError> {
-        self.advance(dt, f_next, None)
+        self.advance(dt, Forcing::Linear { next: f_next }, None)
     }
 
-    /// Like [`step`](Self::step), with the observer coupling of eq. 4.6: the
-    /// measured displacement goes linearly from `u_meas_now` to `u_meas_next`
-    /// over the step and pulls the state with the gains `obs`.
+    /// Advances by `dt` under `forcing` (linear or cubic within the step). On
+    /// error, non-finite values included, the state is unchanged.
+    pub fn step_forced(&mut self, dt: S, forcing: Forcing<S>) -> Result<SdofState<S>, StepError> {
+        self.advance(dt, forcing, None)
+    }
+
+    /// Like [`step_forced`](Self::step_forced), with the observer coupling of
+    /// eq. 4.6: the measured displacement goes linearly from `u_meas_now` to
+    /// `u_meas_next` over the step and pulls the state with the gains `obs`.
     pub fn step_observed(
         &mut self,
         dt: S,
-        f_next: S,
+        forcing: Forcing<S>,
         u_meas_now: S,
         u_meas_next: S,
         obs: Observer<S>,
@@ -219,21 +282,23 @@ impl<S: Scalar, X: Effect<S>> Sdof<S, X> {
         if !finite.iter().all(|v| v.is_finite()) {
             return Err(StepError::NonFiniteInput);
         }
-        self.advance(dt, f_next, Some((u_meas_now, u_meas_next, obs)))
+        self.advance(dt, forcing, Some((u_meas_now, u_meas_next, obs)))
     }
 
     fn advance(
         &mut self,
         dt: S,
-        f_next: S,
+        forcing: Forcing<S>,
         observed: Option<(S, S, Observer<S>)>,
     ) -> Result<SdofState<S>, StepError> {
-        if !(dt.is_finite() && f_next.is_finite()) || dt <= S::ZERO {
+        if !dt.is_finite() || dt <= S::ZERO {
             return Err(StepError::NonFiniteInput);
         }
         let (p, x) = (&self.params, &self.extra);
         let (f0, two_xi_w0) = (self.state.f, self.two_xi_w0);
-        let slope = (f_next - f0) / dt;
+        let [c1, c2, c3] = forcing
+            .polynomial(f0, dt)
+            .ok_or(StepError::NonFiniteInput)?;
         let mut rhs = |t: S, y: &[S; 4]| -> Result<[S; 4], StepError> {
             let [u, v, z, e] = *y;
             let dir = if v < S::ZERO { -S::ONE } else { S::ONE };
@@ -247,7 +312,7 @@ impl<S: Scalar, X: Effect<S>> Sdof<S, X> {
             let dz = rate::dz_du(p, x, &at)?;
             let mut d = [
                 v,
-                f0 + slope * t - two_xi_w0 * v - k.el * u - k.hys * z,
+                f0 + t * (c1 + t * (c2 + t * c3)) - two_xi_w0 * v - k.el * u - k.hys * z,
                 v * dz,
                 k.hys * v * z,
             ];
@@ -280,7 +345,7 @@ impl<S: Scalar, X: Effect<S>> Sdof<S, X> {
             v,
             z,
             energy,
-            f: f_next,
+            f: forcing.next(),
         };
         self.dy = if observed.is_some() {
             None

@@ -53,7 +53,7 @@ pub mod selftest;
 mod spec;
 
 pub use base::{BoucWen, PARAMS as BASE_PARAMS};
-pub use dynamics::{Observer, Sdof, SdofState};
+pub use dynamics::{Forcing, Observer, Sdof, SdofState};
 pub use effects::{Effect, EffectKind, EffectSet, Effects, ZuRule};
 pub use integrate::{Control, Method};
 pub use params::{specs, BwbnParams, ENERGY_LIMIT};

@@ -115,3 +115,25 @@ pub fn interpolate_periodic(x: &[f64], factor: usize) -> Vec<f64> {
     fft(&mut zr, &mut zi, true);
     zr.iter().map(|v| v * factor as f64).collect()
 }
+
+/// Band-limited rate of one period of a periodic real signal sampled every
+/// `dt` (its spectrum times `i w`; the Nyquist bin, whose rate is not defined
+/// by the samples, is dropped).
+pub fn rate_periodic(x: &[f64], dt: f64) -> Vec<f64> {
+    let n = x.len();
+    let (mut re, mut im) = (x.to_vec(), vec![0.0; n]);
+    fft(&mut re, &mut im, false);
+    let w1 = 2.0 * std::f64::consts::PI / (n as f64 * dt);
+    for k in 0..n {
+        let w = if k < n / 2 {
+            k as f64 * w1
+        } else if k > n / 2 {
+            -((n - k) as f64) * w1
+        } else {
+            0.0
+        };
+        (re[k], im[k]) = (-w * im[k], w * re[k]);
+    }
+    fft(&mut re, &mut im, true);
+    re
+}

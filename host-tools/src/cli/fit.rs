@@ -3,7 +3,7 @@
 use super::columns::ReadArgs;
 use super::ModelArg;
 use crate::data;
-use crate::fit::experiment::Experiment;
+use crate::fit::experiment::{Between, Drive, Experiment};
 use crate::fit::nsga2::{BinaryCrossover, Encoding, Nsga2};
 use crate::fit::objectives::Scores;
 use crate::fit::problem::Problem;
@@ -40,6 +40,12 @@ pub struct FitArgs {
     /// Mass in kg, for force-driven records.
     #[arg(long)]
     pub mass: Option<f64>,
+    /// Force-driven records: how the force goes between samples, `linear` or
+    /// `cubic` (Hermite through the samples and their rates from eighth-order
+    /// central differences: for a band-limited force sampled at a few points
+    /// a period; see "Force between samples" in the README).
+    #[arg(long, value_enum)]
+    pub forcing: Option<Between>,
     #[command(flatten)]
     pub read: ReadArgs,
     /// Write the fitted parameters (a parameter file) here.
@@ -146,8 +152,13 @@ impl Progress for Bar {
 }
 
 /// Reads a record for fitting.
-pub fn load(path: &PathBuf, read: &ReadArgs, mass: Option<f64>) -> Result<Experiment> {
-    load_timed(path, read, mass).map(|(exp, _)| exp)
+pub fn load(
+    path: &PathBuf,
+    read: &ReadArgs,
+    mass: Option<f64>,
+    forcing: Option<Between>,
+) -> Result<Experiment> {
+    load_timed(path, read, mass, forcing).map(|(exp, _)| exp)
 }
 
 /// Reads a record for fitting, with its sample times if it has any.
@@ -155,6 +166,7 @@ pub fn load_timed(
     path: &PathBuf,
     read: &ReadArgs,
     mass: Option<f64>,
+    forcing: Option<Between>,
 ) -> Result<(Experiment, Option<Vec<f64>>)> {
     let mut opts = read.options();
     // A mass means the oscillator of eq. 3.3: the force is the input, also
@@ -167,7 +179,11 @@ pub fn load_timed(
         eprintln!("note: {n}");
     }
     let time = record.time().map(<[f64]>::to_vec);
-    Ok((Experiment::from_record(&record, mass)?, time))
+    let mut exp = Experiment::from_record(&record, mass)?;
+    if let Some(between) = forcing {
+        exp = exp.with_forcing(between)?;
+    }
+    Ok((exp, time))
 }
 
 /// Where `--polish` started: the scores of the set NSGA-II chose.
@@ -177,6 +193,14 @@ fn polished_from(chosen: &Scores) -> Value {
         "nrmse": chosen.nrmse,
         "ortiz": chosen.ortiz,
     })
+}
+
+/// How the force goes between samples, for a force-driven problem.
+fn forcing(problem: &Problem) -> Option<Between> {
+    match problem.exp.drive {
+        Drive::Force { between, .. } => Some(between),
+        Drive::Displacement => None,
+    }
 }
 
 /// The fit as a parameter file with its `fit` metadata.
@@ -191,7 +215,7 @@ pub fn fit_json(
         .build(&outcome.x)
         .map_err(|e| anyhow!("fitted set rejected: {e}"))?;
     let mut extra = vec![];
-    if let crate::fit::experiment::Drive::Force { mass, .. } = problem.exp.drive {
+    if let Drive::Force { mass, .. } = problem.exp.drive {
         extra.push(("xi", candidate.xi));
         extra.push(("m", mass * 1e6));
     }
@@ -205,6 +229,9 @@ pub fn fit_json(
         "seconds": seconds,
         "identifiability": outcome.identifiability,
     });
+    if let Some(between) = forcing(problem) {
+        meta["forcing"] = json!(between.name());
+    }
     if let Some(chosen) = &outcome.polished_from {
         meta["polished_from"] = polished_from(chosen);
     }
@@ -227,7 +254,7 @@ pub fn run(args: FitArgs) -> Result<()> {
     if args.params.is_some() {
         bail!("--params (a start file) is for --model {PHM_MODEL}");
     }
-    let exp = load(&args.data, &args.read, args.mass)?;
+    let exp = load(&args.data, &args.read, args.mass, args.forcing)?;
     let problem =
         Problem::new(model, exp, &args.fix).with_context(|| args.data.display().to_string())?;
     if problem.dim() == 0 {
@@ -273,6 +300,7 @@ pub fn run(args: FitArgs) -> Result<()> {
                 "checked_error": s.checked_error,
             })),
             "polished_from": outcome.polished_from.as_ref().map(polished_from),
+            "forcing": forcing(&problem).map(Between::name),
         });
         obj["params"] = file
             .as_object()
@@ -289,6 +317,9 @@ pub fn run(args: FitArgs) -> Result<()> {
             "model {}  method {}  NRMSE {:.4e}  ({} simulations, {seconds:.2} s)",
             model, outcome.method, outcome.scores.nrmse, outcome.evaluations
         );
+        if let Some(between) = forcing(&problem) {
+            println!("  force {between} between samples");
+        }
         for (name, v) in &outcome.values {
             let fixed = if problem.par.fixed.contains_key(name) {
                 "  (fixed)"

@@ -5,8 +5,10 @@
 //!   displacement drives a [`Bwbn`] element; the model predicts the force.
 //! * [`Drive::Force`]: dynamic tests (thesis ch. 4, the Bouc-Wen benchmark).
 //!   The applied force drives the oscillator of eqs 3.13-3.17 ([`Sdof`]); the
-//!   model predicts the displacement.
+//!   model predicts the displacement; between samples the force is linear or
+//!   cubic ([`Between`]).
 
+pub use super::forcing::Between;
 use crate::model::Extras;
 use hysteresis::bwbn::{Bwbn, BwbnParams, Control, Effect, Observer, Sdof};
 use hysteresis::{Element, Scalar, StepError};
@@ -23,6 +25,8 @@ pub enum Drive {
         dt: f64,
         /// Mass in force / (displacement / s^2) (kN s^2/mm for kN and mm).
         mass: f64,
+        /// How the force goes between samples.
+        between: Between,
     },
 }
 
@@ -178,7 +182,7 @@ impl Experiment {
                     });
                 }
             }
-            Drive::Force { dt, mass } => {
+            Drive::Force { dt, mass, between } => {
                 let m = S::from_f64(mass);
                 let per_mass = params.per_unit_mass(m).map_err(SimError::Params)?;
                 let mut osc =
@@ -196,9 +200,10 @@ impl Experiment {
                     }
                 };
                 sink(sample(&osc));
+                let per_mass: Vec<f64> = self.input.iter().map(|f| f / mass).collect();
+                let forcing = super::forcing::steps::<S>(between, &per_mass, dt);
                 let dt = S::from_f64(dt);
-                for i in 1..self.len() {
-                    let f = S::from_f64(self.input[i] / mass);
+                for (i, &f) in (1..).zip(&forcing) {
                     let step = match observer {
                         Some(obs) => osc.step_observed(
                             dt,
@@ -207,7 +212,7 @@ impl Experiment {
                             S::from_f64(self.output[i]),
                             obs,
                         ),
-                        None => osc.step(dt, f),
+                        None => osc.step_forced(dt, f),
                     };
                     step.map_err(|e| SimError::Step(i, e))?;
                     sink(sample(&osc));
@@ -263,10 +268,23 @@ impl Experiment {
                     drive: Drive::Force {
                         dt,
                         mass: mass * 1e-6,
+                        between: Between::Linear,
                     },
                 })
             }
         }
+    }
+
+    /// The same experiment with the force going `between` samples as given;
+    /// an error for a displacement-driven one, whose model has no forcing.
+    pub fn with_forcing(mut self, between: Between) -> anyhow::Result<Self> {
+        match &mut self.drive {
+            Drive::Force { between: b, .. } => *b = between,
+            Drive::Displacement => anyhow::bail!(
+                "--forcing is for force-driven records (give --mass); this one is driven by displacement"
+            ),
+        }
+        Ok(self)
     }
 }
 

@@ -2,6 +2,7 @@
 
 pub mod dual;
 pub mod experiment;
+pub mod forcing;
 pub mod homotopy;
 pub mod identifiability;
 pub mod lanes;

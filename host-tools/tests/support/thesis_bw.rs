@@ -3,7 +3,7 @@
 //! alpha = 0.2, beta = 2, gamma = -1, xi = 0.05, n = 1.2; 10 s at 100 Hz.
 //! Shared by `tests/thesis_bw_example.rs` and `benches/lsq_bw.rs`.
 
-use hyst::fit::experiment::{Drive, Experiment};
+use hyst::fit::experiment::{Between, Drive, Experiment};
 use hysteresis::bwbn::{BoucWen, BwbnParams, Control, Method, Sdof};
 
 /// 500 kg in kN s^2 / mm.
@@ -44,6 +44,10 @@ pub fn record() -> Experiment {
     Experiment {
         input: force,
         output: u,
-        drive: Drive::Force { dt, mass: MASS },
+        drive: Drive::Force {
+            dt,
+            mass: MASS,
+            between: Between::Linear,
+        },
     }
 }

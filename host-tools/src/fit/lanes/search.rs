@@ -15,11 +15,12 @@
 //!   of the prediction is within a quarter of [`SEARCH_TOLERANCE`] of the core's (what the
 //!   search compares; the quarter is the margin for the points in between).
 //!
-//! Otherwise (more steps would cost about as much as the core's adaptive steps), and for every
-//! other model or drive, the search uses the core's oscillator.
+//! Otherwise (more steps would cost about as much as the core's adaptive steps), for every
+//! other model or drive, and for a force that is cubic between samples (the lanes' is linear),
+//! the search uses the core's oscillator.
 
 use super::{BoucWenLanes, LANES};
-use crate::fit::experiment::Drive;
+use crate::fit::experiment::{Between, Drive};
 use crate::fit::objectives::Scores;
 use crate::fit::problem::Problem;
 use hysteresis::bwbn::{BoucWen, EffectSet};
@@ -93,7 +94,13 @@ impl SearchModel {
     /// The search model for `problem`, if it is a force-driven plain Bouc-Wen fit without custom
     /// effects and a step count up to [`MAX_SUBSTEPS`] meets the rules of the module.
     pub fn for_problem(problem: &Problem) -> Option<Self> {
-        let Drive::Force { dt, mass } = problem.exp.drive else {
+        // The lanes force linearly between samples.
+        let Drive::Force {
+            dt,
+            mass,
+            between: Between::Linear,
+        } = problem.exp.drive
+        else {
             return None;
         };
         let (lo, hi) = problem.par.bounds();
@@ -259,7 +266,11 @@ mod tests {
         let exp = Experiment {
             output: vec![1.0; input.len()],
             input,
-            drive: Drive::Force { dt, mass: MASS },
+            drive: Drive::Force {
+                dt,
+                mass: MASS,
+                between: Between::Linear,
+            },
         };
         let fixed = [("k0".to_string(), 6.0)];
         let p = Problem::new(spec, exp, &fixed).unwrap();
