@@ -142,6 +142,39 @@ pub struct Free {
     pub hi: f64,
 }
 
+/// A fitted parameter at an end of its search range.
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+pub struct AtBound {
+    /// The parameter.
+    pub name: &'static str,
+    /// `"lower"` or `"upper"`.
+    pub end: &'static str,
+    /// Its value (physical units), the end of the range.
+    pub value: f64,
+    /// Whether the model accepts values beyond this end (the range is a
+    /// choice of the search there, not a limit of the model).
+    pub beyond_is_valid: bool,
+}
+
+impl std::fmt::Display for AtBound {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let (name, end, value) = (self.name, self.end, self.value);
+        if self.beyond_is_valid {
+            write!(
+                f,
+                "{name} stopped at the {end} end of its search range ({value:.6e}); the model \
+                 allows values beyond it and the data may want one (--fix {name}=VALUE fits the \
+                 rest there)"
+            )
+        } else {
+            write!(
+                f,
+                "{name} is at the {end} limit the model allows ({value:.6e})"
+            )
+        }
+    }
+}
+
 /// The mapping between the optimiser's normalised vector and parameters.
 #[derive(Clone, Debug)]
 pub struct Parametrization {
@@ -232,6 +265,36 @@ impl Parametrization {
             self.free.iter().map(|f| f.lo).collect(),
             self.free.iter().map(|f| f.hi).collect(),
         )
+    }
+
+    /// The free parameters of `x` that sit at an end of their search range
+    /// (within 1e-9 of its width): where a fit stopped because the range
+    /// ended, not because the data chose the value. Whether the model accepts
+    /// values beyond is tried with the parameter 1% of its range further out.
+    pub fn at_bounds(&self, x: &[f64]) -> Vec<AtBound> {
+        let physical = self.physical(x);
+        self.free
+            .iter()
+            .enumerate()
+            .filter_map(|(i, f)| {
+                let width = f.hi - f.lo;
+                let (end, outwards) = if x[i] <= f.lo + 1e-9 * width {
+                    ("lower", -0.01 * width)
+                } else if x[i] >= f.hi - 1e-9 * width {
+                    ("upper", 0.01 * width)
+                } else {
+                    return None;
+                };
+                let mut beyond = x.to_vec();
+                beyond[i] += outwards;
+                Some(AtBound {
+                    name: f.spec.name,
+                    end,
+                    value: physical[f.spec.name],
+                    beyond_is_valid: self.build(&beyond).is_ok(),
+                })
+            })
+            .collect()
     }
 
     /// Physical values of every parameter (free and fixed) at `x`.
@@ -358,6 +421,46 @@ mod tests {
         for (a, b) in x.iter().zip(&back) {
             assert!((a - b).abs() < 1e-12 * a.abs().max(1.0));
         }
+    }
+
+    #[test]
+    fn parameters_at_the_ends_of_their_ranges_are_named() {
+        let p = Parametrization::new(ModelSpec::BW, &ramp_record(), &[]).unwrap();
+        let mut x: Vec<f64> = p.free.iter().map(|f| 0.5 * (f.lo + f.hi)).collect();
+        assert_eq!(p.at_bounds(&x), vec![]);
+        let index = |name| p.names().iter().position(|n| *n == name).unwrap();
+        let (alpha, n) = (index("alpha"), index("n"));
+        x[alpha] = p.free[alpha].hi;
+        x[n] = p.free[n].lo;
+        let at = p.at_bounds(&x);
+        assert_eq!(at.len(), 2);
+        // alpha's search range ends at 0.5, the model's at 1
+        assert!(at.contains(&AtBound {
+            name: "alpha",
+            end: "upper",
+            value: p.physical(&x)["alpha"],
+            beyond_is_valid: true,
+        }));
+        assert!(at
+            .iter()
+            .find(|a| a.name == "alpha")
+            .unwrap()
+            .to_string()
+            .starts_with("alpha stopped at the upper end of its search range (5.000000e-1)"));
+        // n's search range starts at 0.6, the model's at 0 (excluded)
+        let n_at = at.iter().find(|a| a.name == "n").unwrap();
+        assert_eq!((n_at.end, n_at.beyond_is_valid), ("lower", true));
+        x[alpha] = p.free[alpha].lo;
+        let alpha_low = p
+            .at_bounds(&x)
+            .into_iter()
+            .find(|a| a.name == "alpha")
+            .unwrap();
+        assert!(!alpha_low.beyond_is_valid, "alpha < 0 is not a model");
+        assert_eq!(
+            alpha_low.to_string(),
+            "alpha is at the lower limit the model allows (0.000000e0)"
+        );
     }
 
     #[test]
