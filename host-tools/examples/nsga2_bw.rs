@@ -102,7 +102,7 @@ impl BwIdentification {
         };
         let mut sse = [0.0; LANES];
         let mut i = 0;
-        lanes.simulate(&self.forcing, DT, substeps, |s| {
+        lanes.simulate(&self.forcing, None, DT, substeps, |s| {
             if i > 0 {
                 for (l, e) in sse.iter_mut().enumerate() {
                     let d = f64::from(s.u[l]) - self.measured[i - 1];

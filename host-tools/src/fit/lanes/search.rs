@@ -15,12 +15,13 @@
 //!   of the prediction is within a quarter of [`SEARCH_TOLERANCE`] of the core's (what the
 //!   search compares; the quarter is the margin for the points in between).
 //!
-//! Otherwise (more steps would cost about as much as the core's adaptive steps), for every
-//! other model or drive, and for a force that is cubic between samples (the lanes' is linear),
-//! the search uses the core's oscillator.
+//! Otherwise (more steps would cost about as much as the core's adaptive steps), and for every
+//! other model or drive, the search uses the core's oscillator. The force between samples is
+//! the problem's, linear or cubic ([`Between`]), as in the core.
 
 use super::{BoucWenLanes, LANES};
 use crate::fit::experiment::{Between, Drive};
+use crate::fit::forcing::rates;
 use crate::fit::objectives::Scores;
 use crate::fit::problem::Problem;
 use hysteresis::bwbn::{BoucWen, EffectSet};
@@ -88,19 +89,15 @@ pub struct SearchModel {
     mass: f64,
     /// Applied force per unit mass at the samples.
     forcing: Vec<f64>,
+    /// Its rates, when it is cubic between samples.
+    rates: Option<Vec<f64>>,
 }
 
 impl SearchModel {
     /// The search model for `problem`, if it is a force-driven plain Bouc-Wen fit without custom
     /// effects and a step count up to [`MAX_SUBSTEPS`] meets the rules of the module.
     pub fn for_problem(problem: &Problem) -> Option<Self> {
-        // The lanes force linearly between samples.
-        let Drive::Force {
-            dt,
-            mass,
-            between: Between::Linear,
-        } = problem.exp.drive
-        else {
+        let Drive::Force { dt, mass, between } = problem.exp.drive else {
             return None;
         };
         let (lo, hi) = problem.par.bounds();
@@ -132,7 +129,11 @@ impl SearchModel {
             dt,
             mass,
             forcing: problem.exp.input.iter().map(|f| f / mass).collect(),
+            rates: None,
         };
+        if between == Between::Cubic {
+            model.rates = Some(rates(&model.forcing, dt));
+        }
         while model.substeps <= MAX_SUBSTEPS {
             if dt / model.substeps as f64 * stiffest.sqrt() <= MAX_H_W0 {
                 // The fixed-step runs alone: a run that blows up fails the check here (more
@@ -193,13 +194,19 @@ impl SearchModel {
         let mut running = problem.target.running::<LANES>();
         // The energy input of a force-driven model is the applied force over its displacement.
         let mut applied = problem.exp.input.iter();
-        lanes.simulate(&self.forcing, self.dt, self.substeps, |s| {
-            let Some(&f) = applied.next() else {
-                return;
-            };
-            let u = s.u.map(f64::from);
-            running.push(&u, &u, &[f; LANES]);
-        });
+        lanes.simulate(
+            &self.forcing,
+            self.rates.as_deref(),
+            self.dt,
+            self.substeps,
+            |s| {
+                let Some(&f) = applied.next() else {
+                    return;
+                };
+                let u = s.u.map(f64::from);
+                running.push(&u, &u, &[f; LANES]);
+            },
+        );
         let mut lanes_out = running.scores().into_iter().take(valid.len());
         sets.iter()
             .map(|set| {
@@ -256,6 +263,11 @@ mod tests {
     /// The thesis' example (sec. 4.4) at `rate_hz`: F = t sin(2 pi t) kN on 500 kg with
     /// k = 6 kN/mm (fixed), the displacement predicted by the core at the true parameters.
     fn problem(spec: ModelSpec, rate_hz: f64) -> Problem {
+        problem_between(spec, rate_hz, Between::Linear)
+    }
+
+    /// [`problem`] with the force `between` samples as given.
+    fn problem_between(spec: ModelSpec, rate_hz: f64, between: Between) -> Problem {
         let dt = 1.0 / rate_hz;
         let input: Vec<f64> = (0..=(10.0 * rate_hz) as usize)
             .map(|i| {
@@ -269,7 +281,7 @@ mod tests {
             drive: Drive::Force {
                 dt,
                 mass: MASS,
-                between: Between::Linear,
+                between,
             },
         };
         let fixed = [("k0".to_string(), 6.0)];
@@ -354,11 +366,16 @@ mod tests {
     /// model's NRMSE is within the tolerance of the core's, so it ranks candidates as the core
     /// would wherever their errors differ by more. (At some extreme points, such as n = 3.1 with
     /// alpha = 0.014, the core's sub-step budget runs out, where the search model still gives a
-    /// finite answer; those are skipped, and counted.)
+    /// finite answer; those are skipped, and counted.) The same with the force cubic between
+    /// samples, in both models.
     #[test]
     fn random_candidates_score_as_with_the_core() {
-        for rate in [100.0, 500.0] {
-            let p = problem(ModelSpec::BW, rate);
+        for (rate, between) in [
+            (100.0, Between::Linear),
+            (500.0, Between::Linear),
+            (100.0, Between::Cubic),
+        ] {
+            let p = problem_between(ModelSpec::BW, rate, between);
             let model = SearchModel::for_problem(&p).expect("a search model");
             let (lo, hi) = p.par.bounds();
             let mut seed = 0x9e37_79b9_7f4a_7c15u64;
