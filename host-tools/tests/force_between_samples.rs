@@ -9,19 +9,15 @@
 
 #[path = "support/cli.rs"]
 mod cli;
+#[path = "support/thesis_bw.rs"]
+#[allow(dead_code)]
+mod thesis_bw;
 
 use cli::{err, hyst, ok, tmp};
 use hysteresis::bwbn::{BoucWen, BwbnParams, Forcing, Sdof};
 use serde_json::Value;
 use std::f64::consts::PI;
-
-const TRUTH: [(&str, f64); 5] = [
-    ("alpha", 0.2),
-    ("beta", 2.0),
-    ("gamma", -1.0),
-    ("xi", 0.05),
-    ("n", 1.2),
-];
+use thesis_bw::TRUTH;
 
 /// Components of the force: (frequency Hz, amplitude kN, phase).
 const SINES: [(f64, f64, f64); 4] = [

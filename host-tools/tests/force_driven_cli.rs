@@ -6,21 +6,18 @@
 
 #[path = "support/cli.rs"]
 mod cli;
+#[path = "support/thesis_bw.rs"]
+#[allow(dead_code)]
+mod thesis_bw;
 
 use cli::{err, hyst, ok, stderr, tmp};
 use serde_json::Value;
+use thesis_bw::TRUTH;
 
 const RECORD: &str = concat!(
     env!("CARGO_MANIFEST_DIR"),
     "/../benches/baselines/bw_synthetic.csv"
 );
-const TRUTH: [(&str, f64); 5] = [
-    ("alpha", 0.2),
-    ("beta", 2.0),
-    ("gamma", -1.0),
-    ("xi", 0.05),
-    ("n", 1.2),
-];
 
 #[test]
 fn fit_with_mass_then_simulate_the_fit() {

@@ -93,8 +93,9 @@ impl<S: Scalar> Forcing<S> {
     }
 
     /// `[c1, c2, c3]` of `f(t) = f0 + t (c1 + t (c2 + t c3))` over a step of
-    /// `dt` that starts at `f0`, or `None` when a value is not finite.
-    fn polynomial(&self, f0: S, dt: S) -> Option<[S; 3]> {
+    /// `dt` that starts at `f0`, or `None` when a value is not finite: the
+    /// force the oscillator sees at time `t` into the step.
+    pub fn polynomial(&self, f0: S, dt: S) -> Option<[S; 3]> {
         let c = match *self {
             Forcing::Linear { next } => [(next - f0) / dt, S::ZERO, S::ZERO],
             Forcing::Hermite {

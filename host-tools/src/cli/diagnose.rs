@@ -4,10 +4,11 @@
 
 use super::columns::ReadArgs;
 use super::fit::{load_timed, parse_fix, Bar};
+use super::ForcingArgs;
 use crate::discover::rate::{self, RateCheck};
 use crate::discover::slip::{self, SlipCheck};
 use crate::discover::{page, weigh, Diagnosis, Suspect, WeighOptions};
-use crate::fit::experiment::{Between, Drive};
+use crate::fit::experiment::Drive;
 use crate::fit::problem::Problem;
 use crate::fit::run::{self, Method, Outcome, Progress};
 use crate::model::{EffectRef, ModelSpec, ParamFile};
@@ -36,12 +37,8 @@ pub struct Common {
     /// Mass in kg, for force-driven records.
     #[arg(long)]
     pub mass: Option<f64>,
-    /// Force-driven records: how the force goes between samples, `linear` or
-    /// `cubic` (Hermite through the samples and their rates from eighth-order
-    /// central differences: for a band-limited force sampled at a few points
-    /// a period; see "Force between samples" in the README).
-    #[arg(long, value_enum)]
-    pub forcing: Option<Between>,
+    #[command(flatten)]
+    pub forcing: ForcingArgs,
     #[command(flatten)]
     pub read: ReadArgs,
     /// Write a self-contained HTML report with SVG plots.
@@ -93,11 +90,7 @@ pub fn initial_fit(
     bar: &Bar,
 ) -> Result<(Problem, Outcome, Option<Vec<f64>>)> {
     let file = params.map(ParamFile::read).transpose()?;
-    let forcing = match (&common.forcing, &file) {
-        (Some(b), _) => Some(*b),
-        (None, Some(file)) => super::simulate::file_forcing(file)?,
-        (None, None) => None,
-    };
+    let forcing = common.forcing.or_file(file.as_ref())?;
     let (exp, time) = load_timed(&common.data, &common.read, common.mass, forcing)?;
     let problem = Problem::new(common.model, exp, &common.fix)
         .with_context(|| common.data.display().to_string())?;

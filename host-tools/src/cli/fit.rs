@@ -1,7 +1,7 @@
 //! `hyst fit DATA --model SPEC`: parameters of a model from a lab record.
 
 use super::columns::ReadArgs;
-use super::ModelArg;
+use super::{ForcingArgs, ModelArg};
 use crate::data;
 use crate::fit::experiment::{Between, Drive, Experiment};
 use crate::fit::nsga2::{BinaryCrossover, Encoding, Nsga2};
@@ -40,12 +40,8 @@ pub struct FitArgs {
     /// Mass in kg, for force-driven records.
     #[arg(long)]
     pub mass: Option<f64>,
-    /// Force-driven records: how the force goes between samples, `linear` or
-    /// `cubic` (Hermite through the samples and their rates from eighth-order
-    /// central differences: for a band-limited force sampled at a few points
-    /// a period; see "Force between samples" in the README).
-    #[arg(long, value_enum)]
-    pub forcing: Option<Between>,
+    #[command(flatten)]
+    pub forcing: ForcingArgs,
     #[command(flatten)]
     pub read: ReadArgs,
     /// Write the fitted parameters (a parameter file) here.
@@ -258,7 +254,7 @@ pub fn run(args: FitArgs) -> Result<()> {
     if args.params.is_some() {
         bail!("--params (a start file) is for --model {PHM_MODEL}");
     }
-    let exp = load(&args.data, &args.read, args.mass, args.forcing)?;
+    let exp = load(&args.data, &args.read, args.mass, args.forcing.between)?;
     let problem =
         Problem::new(model, exp, &args.fix).with_context(|| args.data.display().to_string())?;
     if problem.dim() == 0 {

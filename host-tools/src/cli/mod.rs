@@ -12,8 +12,9 @@ pub mod sensitivity;
 pub mod simulate;
 pub mod table;
 
-use crate::model::{ModelSpec, PHM_MODEL};
-use clap::{Parser, Subcommand};
+use crate::fit::experiment::Between;
+use crate::model::{ModelSpec, ParamFile, PHM_MODEL};
+use clap::{Args, Parser, Subcommand};
 use std::str::FromStr;
 
 /// A `--model` value: a Bouc-Wen spec (`bw+pinching`, ...) or the polygonal
@@ -35,6 +36,45 @@ impl FromStr for ModelArg {
         ModelSpec::parse(s)
             .map(ModelArg::Bwbn)
             .map_err(|e| anyhow::anyhow!("{e} (or `{PHM_MODEL}`)"))
+    }
+}
+
+/// `--forcing`, for every verb that drives the oscillator with a recorded
+/// force.
+#[derive(Clone, Copy, Debug, Default, Args)]
+pub struct ForcingArgs {
+    /// Force-driven records: how the force goes between samples, `linear` or
+    /// `cubic` (Hermite through the samples and their rates from eighth-order
+    /// central differences: for a band-limited force sampled at a few points
+    /// a period; see "Force between samples" in the README). Default: the
+    /// parameter file's `fit.forcing` where a verb reads one, else linear.
+    #[arg(long = "forcing", value_name = "FORCING", value_enum)]
+    pub between: Option<Between>,
+}
+
+impl ForcingArgs {
+    /// The forcing given on the command line, else the one `file` records
+    /// (`fit.forcing`), else none (linear).
+    pub fn or_file(self, file: Option<&ParamFile>) -> anyhow::Result<Option<Between>> {
+        if self.between.is_some() {
+            return Ok(self.between);
+        }
+        let Some(file) = file else {
+            return Ok(None);
+        };
+        let Some(value) = file.fit.as_ref().and_then(|fit| fit.get("forcing")) else {
+            return Ok(None);
+        };
+        value
+            .as_str()
+            .and_then(Between::from_name)
+            .map(Some)
+            .ok_or_else(|| {
+                anyhow::anyhow!(
+                    "{}: `fit.forcing` is {value}; expected \"linear\" or \"cubic\"",
+                    file.path.display()
+                )
+            })
     }
 }
 

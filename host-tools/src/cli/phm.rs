@@ -46,7 +46,7 @@ fn channel(record: &Record, channel: Channel, unit: Unit) -> Result<Vec<f64>> {
 pub fn simulate(args: &SimulateArgs) -> Result<()> {
     for (given, name) in [
         (args.mass.is_some(), "--mass"),
-        (args.forcing.is_some(), "--forcing"),
+        (args.forcing.between.is_some(), "--forcing"),
     ] {
         if given {
             bail!("{name} is for the force-driven Bouc-Wen oscillator; the PHM is driven by twist");
@@ -144,7 +144,7 @@ fn idealised_start(
 pub fn fit(args: &FitArgs) -> Result<()> {
     for (given, name) in [
         (args.mass.is_some(), "--mass"),
-        (args.forcing.is_some(), "--forcing"),
+        (args.forcing.between.is_some(), "--forcing"),
         (args.pareto.is_some(), "--pareto"),
         (args.bits.is_some(), "--bits"),
         (args.polish, "--polish"),

@@ -3,7 +3,7 @@
 
 use super::columns::ReadArgs;
 use super::fit::load;
-use crate::fit::experiment::Between;
+use super::ForcingArgs;
 use crate::fit::problem::Problem;
 use crate::fit::sensitivity;
 use crate::model::{ModelSpec, ParamFile};
@@ -27,12 +27,8 @@ pub struct SensitivityArgs {
     /// Mass in kg, for force-driven records.
     #[arg(long)]
     pub mass: Option<f64>,
-    /// Force-driven records: how the force goes between samples, `linear` or
-    /// `cubic` (Hermite through the samples and their rates from eighth-order
-    /// central differences: for a band-limited force sampled at a few points
-    /// a period; see "Force between samples" in the README).
-    #[arg(long, value_enum)]
-    pub forcing: Option<Between>,
+    #[command(flatten)]
+    pub forcing: ForcingArgs,
     #[command(flatten)]
     pub read: ReadArgs,
     /// Changes from -50% to +50% in this many steps.
@@ -50,7 +46,7 @@ pub struct SensitivityArgs {
 pub fn run(args: SensitivityArgs) -> Result<()> {
     let file = ParamFile::read(&args.params)?;
     let spec = file.spec(args.model)?;
-    let forcing = args.forcing.or(super::simulate::file_forcing(&file)?);
+    let forcing = args.forcing.or_file(Some(&file))?;
     let exp = load(&args.data, &args.read, args.mass, forcing)?;
     let problem = Problem::new(spec, exp, &[]).with_context(|| args.data.display().to_string())?;
     file.build(spec, problem.par.dynamic)?;

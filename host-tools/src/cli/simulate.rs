@@ -6,9 +6,8 @@
 //! [`phm`](super::phm)).
 
 use super::columns::ReadArgs;
-use super::ModelArg;
+use super::{ForcingArgs, ModelArg};
 use crate::data::{self, Channel};
-use crate::fit::experiment::Between;
 use crate::model::Extras;
 use crate::model::{is_phm, ParamFile, PHM_MODEL};
 use crate::report::plots::{loop_overlay, Quantity, Trace};
@@ -46,13 +45,8 @@ pub struct SimulateArgs {
     /// file's `m` is used (such a file also selects the force drive).
     #[arg(long)]
     pub mass: Option<f64>,
-    /// Force-driven records: how the force goes between samples, `linear` or
-    /// `cubic` (Hermite through the samples and their rates from eighth-order
-    /// central differences: for a band-limited force sampled at a few points
-    /// a period; see "Force between samples" in the README). Default: the fit
-    /// file's `fit.forcing`, else linear.
-    #[arg(long, value_enum)]
-    pub forcing: Option<Between>,
+    #[command(flatten)]
+    pub forcing: ForcingArgs,
     #[command(flatten)]
     pub read: ReadArgs,
     /// PHM only: print one JSON object (units, peak torque, the columns)
@@ -108,23 +102,6 @@ pub fn simulate(
     Ok(s)
 }
 
-/// The forcing between samples a fit file records (`fit.forcing`), if any.
-pub fn file_forcing(file: &ParamFile) -> Result<Option<Between>> {
-    let Some(value) = file.fit.as_ref().and_then(|fit| fit.get("forcing")) else {
-        return Ok(None);
-    };
-    value
-        .as_str()
-        .and_then(Between::from_name)
-        .map(Some)
-        .ok_or_else(|| {
-            anyhow!(
-                "{}: `fit.forcing` is {value}; expected \"linear\" or \"cubic\"",
-                file.path.display()
-            )
-        })
-}
-
 /// Runs `hyst simulate`.
 pub fn run(args: SimulateArgs) -> Result<()> {
     let spec = match (args.model, declares_phm(&args.params)) {
@@ -151,7 +128,7 @@ pub fn run(args: SimulateArgs) -> Result<()> {
     if record.input_channel() == Channel::Force && !record.is_torsion() {
         return forced(&args, &file, spec, &record);
     }
-    if args.forcing.is_some() {
+    if args.forcing.between.is_some() {
         bail!(
             "{}: --forcing is for force-driven records (give --mass, or a fit file with `m`); this one is driven by displacement",
             args.history.display()
@@ -238,7 +215,7 @@ fn forced(
         drive: crate::fit::experiment::Drive::Force {
             dt,
             mass: mass * 1e-6,
-            between: args.forcing.or(file_forcing(file)?).unwrap_or_default(),
+            between: args.forcing.or_file(Some(file))?.unwrap_or_default(),
         },
     };
     let sim = exp

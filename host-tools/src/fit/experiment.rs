@@ -200,10 +200,13 @@ impl Experiment {
                     }
                 };
                 sink(sample(&osc));
-                let per_mass: Vec<f64> = self.input.iter().map(|f| f / mass).collect();
-                let forcing = super::forcing::steps::<S>(between, &per_mass, dt);
+                let rates = (between == Between::Cubic).then(|| {
+                    let per_mass: Vec<f64> = self.input.iter().map(|f| f / mass).collect();
+                    super::forcing::rates(&per_mass, dt)
+                });
                 let dt = S::from_f64(dt);
-                for (i, &f) in (1..).zip(&forcing) {
+                for i in 1..self.len() {
+                    let f = super::forcing::step(&self.input, mass, rates.as_deref(), i);
                     let step = match observer {
                         Some(obs) => osc.step_observed(
                             dt,

@@ -106,26 +106,18 @@ pub fn rates(x: &[f64], dt: f64) -> Vec<f64> {
         .collect()
 }
 
-/// The forcing of each step of a record: `steps(..)[i - 1]` goes from sample
-/// `i - 1` to sample `i` of `f` (already divided by the mass).
-pub fn steps<S: Scalar>(between: Between, f: &[f64], dt: f64) -> Vec<Forcing<S>> {
-    match between {
-        Between::Linear => f[1.min(f.len())..]
-            .iter()
-            .map(|&next| Forcing::Linear {
-                next: S::from_f64(next),
-            })
-            .collect(),
-        Between::Cubic => {
-            let r = rates(f, dt);
-            (1..f.len())
-                .map(|i| Forcing::Hermite {
-                    next: S::from_f64(f[i]),
-                    rate_now: S::from_f64(r[i - 1]),
-                    rate_next: S::from_f64(r[i]),
-                })
-                .collect()
-        }
+/// The forcing of the step from sample `i - 1` to sample `i` of the force
+/// `f`, divided by `mass`; `rates` are those of `f / mass` ([`rates`]) when
+/// the force is cubic between samples, `None` when it is linear.
+pub fn step<S: Scalar>(f: &[f64], mass: f64, rates: Option<&[f64]>, i: usize) -> Forcing<S> {
+    let next = S::from_f64(f[i] / mass);
+    match rates {
+        None => Forcing::Linear { next },
+        Some(r) => Forcing::Hermite {
+            next,
+            rate_now: S::from_f64(r[i - 1]),
+            rate_next: S::from_f64(r[i]),
+        },
     }
 }
 
@@ -184,18 +176,18 @@ mod tests {
         assert_eq!(rates(&[], 1.0), Vec::<f64>::new());
         assert_eq!(rates(&[3.0], 1.0), vec![0.0]);
         assert_eq!(rates(&[1.0, 3.0], 0.5), vec![4.0, 4.0]);
-        assert_eq!(steps::<f64>(Between::Cubic, &[1.0], 1.0), vec![]);
-        assert_eq!(steps::<f64>(Between::Linear, &[], 1.0), vec![]);
         // a straight line: the cubic is the line, its rates the slope
-        let s = steps::<f64>(Between::Cubic, &[1.0, 3.0, 5.0], 0.5);
+        let f = [1.0, 3.0, 5.0];
+        let r = rates(&f, 0.5);
         assert_eq!(
-            s[1],
+            step::<f64>(&f, 1.0, Some(&r), 2),
             Forcing::Hermite {
                 next: 5.0,
                 rate_now: 4.0,
                 rate_next: 4.0
             }
         );
+        assert_eq!(step::<f64>(&f, 2.0, None, 2), Forcing::Linear { next: 2.5 });
     }
 
     #[test]

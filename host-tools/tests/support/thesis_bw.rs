@@ -1,7 +1,8 @@
 //! The Bouc-Wen identification example of thesis section 4.4 (after Ortiz et
 //! al. 2013): m = 500 kg, k = 6 kN/mm, F(t) = t sin(2 pi t) kN, true
 //! alpha = 0.2, beta = 2, gamma = -1, xi = 0.05, n = 1.2; 10 s at 100 Hz.
-//! Shared by `tests/thesis_bw_example.rs` and `benches/lsq_bw.rs`.
+//! Shared by the tests that fit it (`thesis_bw_example.rs`, `exact_jacobian.rs`,
+//! `force_driven_cli.rs`, `force_between_samples.rs`) and `benches/lsq_bw.rs`.
 
 use hyst::fit::experiment::{Between, Drive, Experiment};
 use hysteresis::bwbn::{BoucWen, BwbnParams, Control, Method, Sdof};

@@ -14,7 +14,7 @@
 
 use super::math::pow_abs;
 use super::{Lanes, LANES};
-use hysteresis::bwbn::BoucWen;
+use hysteresis::bwbn::{BoucWen, Forcing};
 
 /// The state of every lane after a sample, in `f32`. (The search scores the displacement; the
 /// energy input of its objectives is the applied force over it, so no work is integrated here.)
@@ -118,16 +118,16 @@ impl BoucWenLanes {
         };
         for (i, w) in forcing.windows(2).enumerate() {
             let slope = (w[1] - w[0]) / k as f64;
-            // The cubic through the samples, in the fraction s of the sample interval.
+            // The core's cubic through the samples, at time t into the sample interval. Rates
+            // that are not finite make the run not finite, which the caller hands to the core.
             let cubic = rates.map(|r| {
-                let (m0, m1) = (r[i] * dt, r[i + 1] * dt);
-                move |s: f64| {
-                    let (s2, s3) = (s * s, s * s * s);
-                    (2.0 * s3 - 3.0 * s2 + 1.0) * w[0]
-                        + (s3 - 2.0 * s2 + s) * m0
-                        + (3.0 * s2 - 2.0 * s3) * w[1]
-                        + (s3 - s2) * m1
-                }
+                let forcing = Forcing::Hermite {
+                    next: w[1],
+                    rate_now: r[i],
+                    rate_next: r[i + 1],
+                };
+                let [c1, c2, c3] = forcing.polynomial(w[0], dt).unwrap_or([f64::NAN; 3]);
+                move |t: f64| w[0] + t * (c1 + t * (c2 + t * c3))
             });
             for j in 0..k {
                 let [f0, fm, f1] = match &cubic {
@@ -136,8 +136,8 @@ impl BoucWenLanes {
                         [start, start + 0.5 * slope, start + slope]
                     }
                     Some(at) => {
-                        let s = j as f64 / k as f64;
-                        [at(s), at(s + 0.5 / k as f64), at(s + 1.0 / k as f64)]
+                        let (h, t) = (dt / k as f64, dt * j as f64 / k as f64);
+                        [at(t), at(t + 0.5 * h), at(t + h)]
                     }
                 }
                 .map(|f| f as f32);
@@ -185,7 +185,7 @@ impl BoucWenLanes {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use hysteresis::bwbn::{BwbnParams, Control, Forcing, Method, Sdof};
+    use hysteresis::bwbn::{BwbnParams, Control, Method, Sdof};
 
     /// The thesis' example (sec. 4.4): m = 500 kg, k = 6 kN/mm, F = t sin(2 pi t) kN, 10 s.
     const MASS: f64 = 5e-4;
@@ -229,14 +229,7 @@ mod tests {
         osc.set_forcing(f[0]).unwrap();
         let mut out = vec![0.0];
         for i in 1..f.len() {
-            let forcing = match rates {
-                None => Forcing::Linear { next: f[i] },
-                Some(r) => Forcing::Hermite {
-                    next: f[i],
-                    rate_now: r[i - 1],
-                    rate_next: r[i],
-                },
-            };
+            let forcing = crate::fit::forcing::step(f, 1.0, rates, i);
             out.push(osc.step_forced(dt, forcing).unwrap().u);
         }
         out
