@@ -127,7 +127,8 @@ fn nsga2_searches_with_the_fixed_step_model_and_reports_the_core() {
         Some(hyst::fit::lanes::LANES as u64)
     );
     let steps = search["steps_per_sample"].as_u64().unwrap();
-    assert!((1..=8).contains(&steps), "{search}");
+    let most = hyst::fit::lanes::MAX_SUBSTEPS as u64;
+    assert!((1..=most).contains(&steps), "{search}");
     assert!(
         search["checked_error"].as_f64().unwrap() <= 2.5e-4,
         "{search}"
@@ -188,6 +189,32 @@ fn nsga2_searches_with_the_fixed_step_model_and_reports_the_core() {
             "Note: the search simulated {} candidates at a time by RK4",
             hyst::fit::lanes::LANES
         )),
+        "{text}"
+    );
+}
+
+/// Where the fixed-step model cannot search (here: an effect the lanes do not hold), NSGA-II
+/// searches with the core and says why, in the text and in `--json`.
+#[test]
+fn nsga2_says_why_it_searches_with_the_core() {
+    let budget = ["--population", "16", "--generations", "2"];
+    let model = ["--model", "bw+strength-degradation"];
+    let with = |extra: &[&str]| {
+        let mut args = vec!["fit", RECORD, "--mass", "500", "--fix", "k0=6"];
+        args.extend_from_slice(&["--method", "nsga2"]);
+        args.extend_from_slice(&budget);
+        args.extend_from_slice(&model);
+        args.extend_from_slice(extra);
+        ok(hyst(&args))
+    };
+    let summary: Value = serde_json::from_slice(&with(&["--json"]).stdout).unwrap();
+    let search = &summary["search_model"];
+    assert_eq!(search["method"], "core", "{summary}");
+    let reason = search["reason"].as_str().unwrap();
+    assert!(reason.contains("only plain Bouc-Wen"), "{reason}");
+    let text = String::from_utf8(with(&[]).stdout).unwrap();
+    assert!(
+        text.contains("Note: the search simulated every candidate with the error-controlled model"),
         "{text}"
     );
 }

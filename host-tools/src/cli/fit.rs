@@ -293,12 +293,15 @@ pub fn run(args: FitArgs) -> Result<()> {
             "seconds": seconds,
             "identifiability": outcome.identifiability,
             "identifiability_summary": outcome.identifiability.summary(),
-            "search_model": outcome.search.map(|s| json!({
-                "method": "rk4",
-                "steps_per_sample": s.substeps,
-                "lanes": s.lanes,
-                "checked_error": s.checked_error,
-            })),
+            "search_model": outcome.search.map(|s| match s {
+                Ok(s) => json!({
+                    "method": "rk4",
+                    "steps_per_sample": s.substeps,
+                    "lanes": s.lanes,
+                    "checked_error": s.checked_error,
+                }),
+                Err(why) => json!({ "method": "core", "reason": why.to_string() }),
+            }),
             "polished_from": outcome.polished_from.as_ref().map(polished_from),
             "forcing": forcing(&problem).map(Between::name),
             "at_bounds": problem.par.at_bounds(&outcome.x),
@@ -339,8 +342,10 @@ pub fn run(args: FitArgs) -> Result<()> {
                 chosen.nrmse, outcome.scores.nrmse
             );
         }
-        if let Some(search) = &outcome.search {
-            println!("Note: {search}.");
+        match &outcome.search {
+            Some(Ok(lanes)) => println!("Note: {lanes}."),
+            Some(Err(core)) => println!("Note: {core}."),
+            None => {}
         }
         if let Some(out) = &args.out {
             println!("parameters written to {}", out.display());

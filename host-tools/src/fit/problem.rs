@@ -3,7 +3,7 @@
 
 use super::dual::Dual;
 use super::experiment::{Drive, Experiment, Prediction};
-use super::lanes::{SearchModel, LANES};
+use super::lanes::{SearchModel, SearchSummary, Unsuited, LANES};
 use super::lsq::Residuals;
 use super::objectives::{Scores, Target, ENVELOPE_FLOOR};
 use super::parametrization::Candidate;
@@ -297,13 +297,14 @@ pub struct Ortiz<'a> {
     problem: &'a Problem,
     bounds: Vec<super::nsga2::Bounds>,
     constrained: bool,
-    /// The fixed-step model the search simulates candidates with, several at a time, where
-    /// the problem allows one ([`SearchModel::for_problem`]).
-    search: Option<SearchModel>,
+    /// The fixed-step model the search simulates candidates with, several at a time, or why the
+    /// problem allows none ([`SearchModel::for_problem`]).
+    search: Result<SearchModel, Unsuited>,
 }
 
 impl<'a> Ortiz<'a> {
-    /// Wraps a fitting problem.
+    /// Wraps a fitting problem, evaluating candidates with the lane-batched fixed-step model
+    /// where [`SearchModel::for_problem`] finds one accurate enough.
     pub fn new(problem: &'a Problem) -> Self {
         let bounds = problem
             .par
@@ -319,22 +320,16 @@ impl<'a> Ortiz<'a> {
             problem,
             bounds,
             constrained,
-            search: None,
-        }
-    }
-
-    /// The same, evaluating candidates with the lane-batched fixed-step model where
-    /// [`SearchModel::for_problem`] finds one accurate enough.
-    pub fn with_search_model(problem: &'a Problem) -> Self {
-        Ortiz {
             search: SearchModel::for_problem(problem),
-            ..Self::new(problem)
         }
     }
 
-    /// The search model in use, if any.
-    pub fn search_model(&self) -> Option<&SearchModel> {
-        self.search.as_ref()
+    /// The search model in use, or why there is none.
+    pub fn search_summary(&self) -> Result<SearchSummary, Unsuited> {
+        self.search
+            .as_ref()
+            .map(SearchModel::summary)
+            .map_err(|u| *u)
     }
 
     fn evaluation(&self, x: &[f64], scores: Option<Scores>) -> super::nsga2::Evaluation {
@@ -401,7 +396,7 @@ impl super::nsga2::Problem for Ortiz<'_> {
         self.evaluate_batch(&[x]).remove(0)
     }
     fn batch_size(&self) -> usize {
-        if self.search.is_some() {
+        if self.search.is_ok() {
             LANES
         } else {
             1
@@ -409,8 +404,8 @@ impl super::nsga2::Problem for Ortiz<'_> {
     }
     fn evaluate_batch(&self, xs: &[&[f64]]) -> Vec<super::nsga2::Evaluation> {
         let scores: Vec<Option<Scores>> = match &self.search {
-            Some(model) => model.scores(self.problem, xs),
-            None => xs.iter().map(|x| self.problem.scores(x)).collect(),
+            Ok(model) => model.scores(self.problem, xs),
+            Err(_) => xs.iter().map(|x| self.problem.scores(x)).collect(),
         };
         xs.iter()
             .zip(scores)

@@ -4,7 +4,7 @@
 
 use super::homotopy;
 use super::identifiability::{self, Identifiability};
-use super::lanes::SearchSummary;
+use super::lanes::{SearchSummary, Unsuited};
 use super::lsq::{self, Options};
 use super::nsga2::Nsga2;
 use super::objectives::Scores;
@@ -69,8 +69,9 @@ pub struct Outcome {
     pub identifiability: Identifiability,
     /// Model simulations used.
     pub evaluations: usize,
-    /// The fixed-step model an evolutionary search simulated with, if it used one.
-    pub search: Option<SearchSummary>,
+    /// For an evolutionary search: the fixed-step model it simulated with, or why it simulated
+    /// with the core instead.
+    pub search: Option<Result<SearchSummary, Unsuited>>,
     /// With [`Evolution::polish`]: the scores of the solution NSGA-II chose, which least squares
     /// then refined into this outcome.
     pub polished_from: Option<Scores>,
@@ -240,7 +241,7 @@ pub fn fit_with(
 /// NSGA-II on the Ortiz objectives; the thesis' solution (nearest the origin
 /// of the normalised front).
 fn evolve(problem: &Problem, evolution: &Evolution, progress: &dyn Progress) -> Result<Outcome> {
-    let ortiz = Ortiz::with_search_model(problem);
+    let ortiz = Ortiz::new(problem);
     let settings = &evolution.nsga2;
     let outcome = settings
         .run_with(&ortiz, |g| {
@@ -271,7 +272,7 @@ fn evolve(problem: &Problem, evolution: &Evolution, progress: &dyn Progress) -> 
         anyhow!("the chosen parameter set, or one next to it, cannot be simulated")
     })?;
     let mut evaluations = outcome.evaluations + sol.evaluations;
-    let search = ortiz.search_model().map(|m| m.summary());
+    let search = Some(ortiz.search_summary());
     if !evolution.polish {
         let sol = lsq::Solution {
             iterations: settings.generations,

@@ -15,7 +15,7 @@ pub mod math;
 pub mod search;
 
 pub use bouc_wen::{BoucWenLanes, LaneState};
-pub use search::{SearchModel, SearchSummary};
+pub use search::{SearchModel, SearchSummary, Unsuited, MAX_SUBSTEPS};
 
 /// Parameter sets simulated together: two AVX2 registers of eight `f32`, enough independent work
 /// to hide the latency of the polynomial chains.
