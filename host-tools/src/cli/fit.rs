@@ -228,9 +228,8 @@ pub fn fit_json(
     if let Some(between) = forcing(problem) {
         meta["forcing"] = json!(between.name());
     }
-    let at_bounds = problem.par.at_bounds(&outcome.x);
-    if !at_bounds.is_empty() {
-        meta["at_bounds"] = json!(at_bounds);
+    if !outcome.at_bounds.is_empty() {
+        meta["at_bounds"] = json!(outcome.at_bounds);
     }
     if let Some(chosen) = &outcome.polished_from {
         meta["polished_from"] = polished_from(chosen);
@@ -304,7 +303,7 @@ pub fn run(args: FitArgs) -> Result<()> {
             }),
             "polished_from": outcome.polished_from.as_ref().map(polished_from),
             "forcing": forcing(&problem).map(Between::name),
-            "at_bounds": problem.par.at_bounds(&outcome.x),
+            "at_bounds": outcome.at_bounds,
         });
         obj["params"] = file
             .as_object()
@@ -333,7 +332,7 @@ pub fn run(args: FitArgs) -> Result<()> {
             println!("  {name:<10} {v:>14.6e}{fixed}");
         }
         println!("{}", outcome.identifiability.summary());
-        for at in problem.par.at_bounds(&outcome.x) {
+        for at in &outcome.at_bounds {
             println!("Note: {at}.");
         }
         if let Some(chosen) = &outcome.polished_from {

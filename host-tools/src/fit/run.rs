@@ -8,6 +8,7 @@ use super::lanes::{SearchSummary, Unsuited};
 use super::lsq::{self, Options};
 use super::nsga2::Nsga2;
 use super::objectives::Scores;
+use super::parametrization::AtBound;
 use super::problem::{LeastSquares, Ortiz, Problem};
 use anyhow::{anyhow, bail, Result};
 use rayon::prelude::*;
@@ -69,6 +70,8 @@ pub struct Outcome {
     pub identifiability: Identifiability,
     /// Model simulations used.
     pub evaluations: usize,
+    /// The fitted parameters that stopped at an end of their search range.
+    pub at_bounds: Vec<AtBound>,
     /// For an evolutionary search: the fixed-step model it simulated with, or why it simulated
     /// with the core instead.
     pub search: Option<Result<SearchSummary, Unsuited>>,
@@ -336,6 +339,7 @@ pub fn finish(
     Ok(Outcome {
         method: method.to_string(),
         values: problem.par.physical(&sol.x),
+        at_bounds: problem.par.at_bounds(&sol.x),
         x: sol.x,
         scores,
         identifiability,
