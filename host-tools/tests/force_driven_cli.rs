@@ -133,6 +133,8 @@ fn nsga2_searches_with_the_fixed_step_model_and_reports_the_core() {
         search["checked_error"].as_f64().unwrap() <= 2.5e-4,
         "{search}"
     );
+    let retried = search["retried"].as_u64().unwrap();
+    assert!(search["by_core"].as_u64().unwrap() <= retried, "{search}");
     let nrmse = summary["nrmse"].as_f64().unwrap();
     assert!(nrmse.is_finite() && nrmse < 0.5, "{nrmse}");
 

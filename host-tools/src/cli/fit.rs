@@ -298,6 +298,8 @@ pub fn run(args: FitArgs) -> Result<()> {
                     "steps_per_sample": s.substeps,
                     "lanes": s.lanes,
                     "checked_error": s.checked_error,
+                    "retried": s.retried,
+                    "by_core": s.by_core,
                 }),
                 Err(why) => json!({ "method": "core", "reason": why.to_string() }),
             }),
