@@ -89,8 +89,6 @@ pub enum Unsuited {
     /// The model cannot be built at a corner of the bounds, where the stiffest oscillator is
     /// looked for.
     Corner,
-    /// More free parameters than the checked points' sequence has bases.
-    Parameters(usize),
     /// The core cannot simulate the start, against which the steps are checked.
     Start,
     /// No step count up to [`MAX_SUBSTEPS`] met the tolerance: the largest difference of NRMSE
@@ -113,13 +111,8 @@ impl std::fmt::Display for Unsuited {
                 f,
                 "the fixed-step search model holds only plain Bouc-Wen under an applied force"
             ),
-            Unsuited::Corner => write!(f, "it could not be built at a corner of the bounds"),
-            Unsuited::Parameters(n) => write!(
-                f,
-                "the fixed-step search model is checked for up to {} free parameters, not {n}",
-                PRIMES.len()
-            ),
-            Unsuited::Start => write!(f, "it could not simulate the start point"),
+            Unsuited::Corner => write!(f, "the model cannot be built at a corner of the bounds"),
+            Unsuited::Start => write!(f, "the error-controlled model cannot simulate the start"),
             Unsuited::Inaccurate { checked_error } => write!(
                 f,
                 "RK4 at up to {MAX_SUBSTEPS} steps a sample left the NRMSE at sixteen points of \
@@ -219,8 +212,9 @@ impl SearchModel {
             }
             stiffest = stiffest.max(c.params.base().k0 / mass);
         }
+        // Plain Bouc-Wen has six parameters at most, one Halton base each.
         if lo.len() > PRIMES.len() {
-            return Err(Unsuited::Parameters(lo.len()));
+            return Err(Unsuited::Model);
         }
         let points = checked_points(problem);
         // The core's NRMSE where it can simulate (its sub-step budget may run out at extreme
