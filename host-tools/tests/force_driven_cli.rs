@@ -39,6 +39,13 @@ fn fit_with_mass_then_simulate_the_fit() {
     assert_eq!(file["m"].as_f64(), Some(500.0));
     let nrmse = summary["nrmse"].as_f64().unwrap();
     assert!(nrmse < 1e-3, "nrmse {nrmse}");
+    // The default method, auto, screened its starts with the fixed-step model and says so.
+    assert_eq!(summary["method"], "auto");
+    let screening = &summary["screening"];
+    assert_eq!(screening["method"], "rk4", "{summary}");
+    assert_eq!(screening["starts"].as_u64(), Some(8));
+    assert_eq!(screening["refined"].as_u64(), Some(2));
+    assert!(screening["lane_runs"].as_u64().unwrap() > 0);
 
     // The fit file selects the force drive and the mass by itself.
     let csv = tmp("sim.csv").display().to_string();

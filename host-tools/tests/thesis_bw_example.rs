@@ -129,3 +129,26 @@ fn nsga2_polished_by_least_squares_reaches_the_truth() {
     assert!(after < 1e-4, "polished parameters off by {after:e}");
     assert!(polished.scores.nrmse < 1e-3 * alone.scores.nrmse);
 }
+
+/// `auto` on a force-driven plain Bouc-Wen record screens its eight starts with the fixed-step
+/// lane model and refines the best two with the core: it reaches the truth as least squares
+/// does from 50-150% starts, and says how it screened.
+#[test]
+fn auto_screens_its_starts_and_reaches_the_truth() {
+    let p = problem();
+    let fit = run::fit(&p, Method::Auto, &p.par.default_start(), &Quiet).unwrap();
+    let screening = fit
+        .screening
+        .expect("a force-driven plain Bouc-Wen fit is screened");
+    assert_eq!(
+        (screening.starts, screening.refined),
+        (run::STARTS, run::REFINED)
+    );
+    assert!(screening.model.runs > 0);
+    let err = max_rel_error(&p, &fit.x);
+    eprintln!(
+        "auto: NRMSE {:.3e}, parameters off by {err:.2e}, {} core simulations, {} lane runs",
+        fit.scores.nrmse, fit.evaluations, screening.model.runs
+    );
+    assert!(err < 1e-4, "parameters off by {err:e}");
+}

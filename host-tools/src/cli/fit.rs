@@ -300,9 +300,19 @@ pub fn run(args: FitArgs) -> Result<()> {
                     "checked_error": s.checked_error,
                     "retried": s.retried,
                     "by_core": s.by_core,
+                    "lane_runs": s.runs,
                 }),
                 Err(why) => json!({ "method": "core", "reason": why.to_string() }),
             }),
+            "screening": outcome.screening.map(|s| json!({
+                "method": "rk4",
+                "steps_per_sample": s.model.substeps,
+                "lanes": s.model.lanes,
+                "lane_runs": s.model.runs,
+                "checked_error": s.model.checked_error,
+                "starts": s.starts,
+                "refined": s.refined,
+            })),
             "polished_from": outcome.polished_from.as_ref().map(polished_from),
             "forcing": forcing(&problem).map(Between::name),
             "at_bounds": outcome.at_bounds,
@@ -342,6 +352,9 @@ pub fn run(args: FitArgs) -> Result<()> {
                 "NSGA-II chose a set with NRMSE {:.4e}; least squares from there reached {:.4e}.",
                 chosen.nrmse, outcome.scores.nrmse
             );
+        }
+        if let Some(screening) = &outcome.screening {
+            println!("Note: {screening}.");
         }
         match &outcome.search {
             Some(Ok(lanes)) => println!("Note: {lanes}."),

@@ -1,6 +1,8 @@
 //! Simulating several candidate parameter sets at once, one per vector lane, for the
 //! evolutionary search (thesis ch. 3): NSGA-II evaluates a hundred candidates a generation, all
-//! on the same record, so the same arithmetic runs for each of them in lockstep.
+//! on the same record, so the same arithmetic runs for each of them in lockstep. The same
+//! batches give the residuals and a differenced Jacobian for screening the starts of a
+//! multi-start least-squares fit ([`least_squares`]).
 //!
 //! [`BoucWenLanes`] is the plain Bouc-Wen oscillator of thesis eqs 3.3-3.4 and 3.13, per unit
 //! mass, for [`LANES`] parameter sets, integrated by the classic fourth-order Runge-Kutta method
@@ -11,10 +13,12 @@
 //! table-driven `pow` cannot.
 
 pub mod bouc_wen;
+pub mod least_squares;
 pub mod math;
 pub mod search;
 
 pub use bouc_wen::{BoucWenLanes, LaneState};
+pub use least_squares::LaneResiduals;
 pub use search::{SearchModel, SearchSummary, Unsuited, MAX_SUBSTEPS};
 
 /// Parameter sets simulated together: two AVX2 registers of eight `f32`, enough independent work

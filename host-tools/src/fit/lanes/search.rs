@@ -57,7 +57,7 @@ const CHECKED: usize = 15;
 /// and between them the difference can be larger. Measured on the thesis example at 500 Hz
 /// (24 random points): at one step a sample up to 2.0e-3 where eight checked points stayed
 /// below 7.5e-4; at two steps (chosen) 3.9e-5 against the sixteen checked points' 4.1e-6.
-const MARGIN: f64 = 0.25;
+pub(crate) const MARGIN: f64 = 0.25;
 
 /// The first primes: a Halton sequence's bases, one per free parameter.
 const PRIMES: [u32; 8] = [2, 3, 5, 7, 11, 13, 17, 19];
@@ -79,6 +79,8 @@ pub struct SearchSummary {
     pub retried: usize,
     /// Of those, the candidates that the core simulated, their fixed-step run not finite again.
     pub by_core: usize,
+    /// Batches of lanes simulated, the checks of the step count included.
+    pub runs: usize,
 }
 
 /// Why a search simulates every candidate with the core's error-controlled oscillator.
@@ -167,6 +169,8 @@ pub struct SearchModel {
     /// Candidates simulated again with more steps, and those simulated by the core.
     retried: Counter,
     by_core: Counter,
+    /// Batches of lanes simulated, the checks of the step count included.
+    runs: Counter,
 }
 
 /// A count shared by the threads of a search.
@@ -236,6 +240,7 @@ impl SearchModel {
             rates: None,
             retried: Counter::default(),
             by_core: Counter::default(),
+            runs: Counter::default(),
         };
         if between == Between::Cubic {
             model.rates = Some(rates(&model.forcing, dt));
@@ -270,6 +275,7 @@ impl SearchModel {
             checked_error: self.checked_error,
             retried: self.retried.get(),
             by_core: self.by_core.get(),
+            runs: self.runs.get(),
         }
     }
 
@@ -303,6 +309,64 @@ impl SearchModel {
     /// simulation is not finite. Each lane's samples go straight into its objectives
     /// ([`Target::running`](crate::fit::objectives::Target::running)); no prediction is stored.
     fn simulate(&self, problem: &Problem, xs: &[&[f64]], substeps: usize) -> Vec<Option<Scores>> {
+        let mut running = problem.target.running::<LANES>();
+        // The energy input of a force-driven model is the applied force over its displacement.
+        let mut applied = problem.exp.input.iter();
+        let valid = self.run(problem, xs, substeps, |u| {
+            if let Some(&f) = applied.next() {
+                running.push(u, u, &[f; LANES]);
+            }
+        });
+        let mut lanes_out = running.scores().into_iter();
+        valid
+            .iter()
+            .map(|&ok| {
+                // An output that is not finite makes the squared error not finite.
+                ok.then(|| lanes_out.next())
+                    .flatten()
+                    .filter(|s| s.nrmse.is_finite())
+            })
+            .collect()
+    }
+
+    /// Least-squares residuals (those of [`Problem::residuals`]: prediction error over
+    /// `RMS(measured) sqrt(samples)`) at up to [`LANES`] points, simulated together at the
+    /// model's step count: `None` where a point's parameters are rejected or a residual is not
+    /// finite.
+    pub fn residuals(&self, problem: &Problem, xs: &[&[f64]]) -> Vec<Option<Vec<f64>>> {
+        let scale = problem.target.residual_scale();
+        let measured = &problem.target.output;
+        let mut lanes = vec![Vec::with_capacity(measured.len()); xs.len()];
+        let mut sample = 0;
+        let valid = self.run(problem, xs, self.substeps, |u| {
+            if let Some(y) = measured.get(sample) {
+                for (r, u) in lanes.iter_mut().zip(u) {
+                    r.push((u - y) * scale);
+                }
+            }
+            sample += 1;
+        });
+        let mut lanes = lanes.into_iter();
+        valid
+            .iter()
+            .map(|&ok| {
+                ok.then(|| lanes.next())
+                    .flatten()
+                    .filter(|r| r.iter().all(|v| v.is_finite()))
+            })
+            .collect()
+    }
+
+    /// Simulates the points `xs` together (up to [`LANES`]) and hands `sink` the
+    /// displacement of every lane at each sample, the first lanes holding the valid points in
+    /// order. Returns which points were valid (their parameters could be built).
+    fn run(
+        &self,
+        problem: &Problem,
+        xs: &[&[f64]],
+        substeps: usize,
+        mut sink: impl FnMut(&[f64; LANES]),
+    ) -> Vec<bool> {
         let sets: Vec<Option<(BoucWen<f64>, f64)>> = xs
             .iter()
             .map(|x| {
@@ -313,32 +377,17 @@ impl SearchModel {
             .collect();
         let valid: Vec<(BoucWen<f64>, f64)> = sets.iter().flatten().copied().collect();
         let Some(lanes) = BoucWenLanes::new(&valid) else {
-            return vec![None; xs.len()];
+            return vec![false; xs.len()];
         };
-        let mut running = problem.target.running::<LANES>();
-        // The energy input of a force-driven model is the applied force over its displacement.
-        let mut applied = problem.exp.input.iter();
+        self.runs.add(1);
         lanes.simulate(
             &self.forcing,
             self.rates.as_deref(),
             self.dt,
             substeps,
-            |s| {
-                let Some(&f) = applied.next() else {
-                    return;
-                };
-                let u = s.u.map(f64::from);
-                running.push(&u, &u, &[f; LANES]);
-            },
+            |s| sink(&s.u.map(f64::from)),
         );
-        let mut lanes_out = running.scores().into_iter().take(valid.len());
-        sets.iter()
-            .map(|set| {
-                set.as_ref()?;
-                // An output that is not finite makes the squared error not finite.
-                lanes_out.next().filter(|s| s.nrmse.is_finite())
-            })
-            .collect()
+        sets.iter().map(Option::is_some).collect()
     }
 }
 
