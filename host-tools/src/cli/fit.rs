@@ -30,7 +30,8 @@ pub struct FitArgs {
     /// coefficients).
     #[arg(long)]
     pub params: Option<PathBuf>,
-    /// Search method: lsq, homotopy (force-driven records), nsga2 or auto.
+    /// Search method: lsq, homotopy (force-driven records), nsga2 or auto (least squares from
+    /// eight starts; for force-driven `bw`, screened with the fixed-step model first).
     #[arg(long, default_value = "auto")]
     pub method: String,
     /// Hold a parameter at a value (physical units), e.g. `--fix beta=2`;
