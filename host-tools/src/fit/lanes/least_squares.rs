@@ -89,65 +89,26 @@ impl Residuals for LaneResiduals<'_> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::fit::experiment::{Between, Drive, Experiment};
+    use crate::fit::lanes::search::tests::{problem as thesis, TRUTH};
     use crate::fit::lanes::search::{MARGIN, SEARCH_TOLERANCE};
     use crate::fit::problem::LeastSquares;
     use crate::model::ModelSpec;
-    use hysteresis::bwbn::{BoucWen, BwbnParams, Control, Method, Sdof};
     use std::collections::BTreeMap;
 
-    const MASS: f64 = 5e-4;
-
-    /// The thesis' example (sec. 4.4): F = t sin(2 pi t) kN on 500 kg, k = 6 kN/mm (fixed),
-    /// 10 s at 100 Hz, the displacement of the true oscillator.
+    /// The thesis' example (sec. 4.4) at its 100 Hz: F = t sin(2 pi t) kN on 500 kg, k = 6 kN/mm
+    /// (fixed), the displacement of the true oscillator.
     fn problem() -> Problem {
-        let dt = 0.01;
-        let force: Vec<f64> = (0..=1000)
-            .map(|i| {
-                let t = i as f64 * dt;
-                t * (2.0 * std::f64::consts::PI * t).sin()
-            })
-            .collect();
-        let base = BoucWen::new(6.0, 0.2, 1.2, 2.0, -1.0).unwrap();
-        let control = Control {
-            method: Method::Dp54,
-            tol: 1e-11,
-            max_substeps: 5000,
-        };
-        let mut osc = Sdof::from_physical(BwbnParams::plain(base), MASS, 0.05)
-            .unwrap()
-            .with_control(control);
-        let mut u = vec![0.0];
-        for f in &force[1..] {
-            u.push(osc.step(dt, f / MASS).unwrap().u);
-        }
-        let exp = Experiment {
-            input: force,
-            output: u,
-            drive: Drive::Force {
-                dt,
-                mass: MASS,
-                between: Between::Linear,
-            },
-        };
-        Problem::new(ModelSpec::BW, exp, &[("k0".into(), 6.0)]).unwrap()
+        thesis(ModelSpec::BW, 100.0)
     }
 
     fn at(p: &Problem, scale: f64) -> Vec<f64> {
-        let truth = [
-            ("alpha", 0.2),
-            ("beta", 2.0),
-            ("gamma", -1.0),
-            ("xi", 0.05),
-            ("n", 1.2),
-        ];
-        let values: BTreeMap<&str, f64> = truth.iter().map(|(k, v)| (*k, v * scale)).collect();
+        let values: BTreeMap<&str, f64> = TRUTH.iter().map(|(k, v)| (*k, v * scale)).collect();
         p.par.normalise(&values)
     }
 
     /// Against the exact Jacobian of the core (one simulation in dual numbers) at the truth and
     /// 20% off it, at the 8 steps a sample the search model chooses here: every column within
-    /// 5e-2 of its largest entry (measured 1.3e-3 to 3.3e-2, the largest for `n`; the same for
+    /// 5e-2 of its largest entry (measured 1.3e-3 to 3.3e-2, the largest for `xi`; the same for
     /// steps of 3e-4 to 1e-3 of the range, so this is the fixed-step model's own error, not the
     /// differences'; at 1e-2 of the range the differences add up to 18%), and the residuals, in
     /// NRMSE, within the tolerance the search model was accepted with (measured 5.5e-6 and

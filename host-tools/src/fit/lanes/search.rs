@@ -418,7 +418,7 @@ fn radical_inverse(mut i: u32, base: u32) -> f64 {
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
     use crate::fit::experiment::Experiment;
     use crate::model::ModelSpec;
@@ -426,7 +426,7 @@ mod tests {
     use std::f64::consts::PI;
 
     const MASS: f64 = 5e-4;
-    const TRUTH: [(&str, f64); 5] = [
+    pub(crate) const TRUTH: [(&str, f64); 5] = [
         ("alpha", 0.2),
         ("beta", 2.0),
         ("gamma", -1.0),
@@ -436,7 +436,7 @@ mod tests {
 
     /// The thesis' example (sec. 4.4) at `rate_hz`: F = t sin(2 pi t) kN on 500 kg with
     /// k = 6 kN/mm (fixed), the displacement predicted by the core at the true parameters.
-    fn problem(spec: ModelSpec, rate_hz: f64) -> Problem {
+    pub(crate) fn problem(spec: ModelSpec, rate_hz: f64) -> Problem {
         problem_between(spec, rate_hz, Between::Linear)
     }
 
