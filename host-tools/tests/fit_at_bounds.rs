@@ -73,3 +73,16 @@ fn a_fit_inside_its_ranges_reports_no_bounds() {
     assert_eq!(summary["at_bounds"], serde_json::json!([]));
     assert!(summary["nrmse"].as_f64().unwrap() < 1e-6);
 }
+
+/// `auto` screens its starts with the fixed-step lane model only for force-driven plain Bouc-Wen
+/// records; a displacement-driven loop is fitted from every start with the core, and the summary
+/// has no screening.
+#[test]
+fn auto_on_a_displacement_record_fits_every_start_with_the_core() {
+    let rec = record(0.2);
+    let o = ok(hyst(&["fit", &rec, "--method", "auto", "--json"]));
+    let summary: Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(summary["method"], "auto");
+    assert!(summary["screening"].is_null(), "{summary}");
+    assert!(summary["nrmse"].as_f64().unwrap() < 1e-6);
+}
