@@ -78,7 +78,8 @@ impl<F: Fn(&[f64]) -> Option<Vec<f64>> + Sync> Residuals for F {
     }
 }
 
-fn cost(r: &[f64]) -> f64 {
+/// The cost `||r||^2` of residuals `r`.
+pub fn cost(r: &[f64]) -> f64 {
     r.iter().map(|v| v * v).sum()
 }
 

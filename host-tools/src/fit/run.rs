@@ -238,9 +238,6 @@ pub fn fit_with(
         Method::Lsq => lsq::minimize_observed(&residuals, x0, &lo, &hi, opts, |_, c| report(c)),
         Method::Auto => {
             let all = starts(x0, &lo, &hi, STARTS, 0x5eed);
-            let refine = |s: &Vec<f64>| {
-                lsq::minimize_observed(&residuals, s, &lo, &hi, opts, |_, c| report(c))
-            };
             let screened = SearchModel::for_problem(problem)
                 .ok()
                 .and_then(|model| screen(problem, &model, &all, &residuals, &report, progress));
@@ -252,7 +249,8 @@ pub fn fit_with(
                 .par_iter()
                 .enumerate()
                 .filter_map(|(i, s)| {
-                    let sol = refine(s);
+                    let sol =
+                        lsq::minimize_observed(&residuals, s, &lo, &hi, opts, |_, c| report(c));
                     progress.stage(&match screened {
                         Some(_) => format!("screened end {} of {} refined", i + 1, ends.len()),
                         None => format!("start {} of {} done", i + 1, ends.len()),
@@ -336,13 +334,13 @@ fn screen(
         .filter_map(|(i, s)| {
             // A start the fixed-step model cannot simulate is scored as it is.
             let x = lsq::minimize(&lanes, s, &lo, &hi, opts).map_or_else(|| s.clone(), |e| e.x);
-            let nrmse = lsq::Residuals::residuals(core, &x)
-                .map(|r| r.iter().map(|v| v * v).sum::<f64>())
+            let cost = lsq::Residuals::residuals(core, &x)
+                .map(|r| lsq::cost(&r))
                 .filter(|c| c.is_finite());
-            if let Some(c) = nrmse {
+            if let Some(c) = cost {
                 report(c);
             }
-            let nrmse = nrmse.map(f64::sqrt);
+            let nrmse = cost.map(f64::sqrt);
             progress.stage(&format!(
                 "start {} of {} screened with the fixed-step model: NRMSE {}",
                 i + 1,
