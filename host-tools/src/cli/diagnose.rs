@@ -213,31 +213,31 @@ pub fn print_diagnosis(
     d: &Diagnosis,
     suspects: &[Suspect],
     beyond: &Beyond,
-) {
-    println!(
+) -> std::io::Result<()> {
+    outln!(
         "model {}: NRMSE {:.4} with {} parameters, total energy off by {:.1}%",
         problem.par.spec,
         outcome.scores.nrmse,
         problem.dim(),
         100.0 * d.energy_error
     );
-    println!("where it fails:");
+    outln!("where it fails:");
     for p in d.places.iter().take(4) {
-        println!("  {}", p.words);
+        outln!("  {}", p.words);
     }
-    println!("suspects, most likely first:");
+    outln!("suspects, most likely first:");
     for (i, s) in suspects.iter().enumerate() {
         let mark = if s.significant {
             "SIGNIFICANT"
         } else {
             "not significant"
         };
-        println!("  {}. {:<22} {mark}", i + 1, s.effect.name());
-        println!("     {}", s.evidence);
+        outln!("  {}. {:<22} {mark}", i + 1, s.effect.name());
+        outln!("     {}", s.evidence);
     }
     let found = beyond.found();
     if !found.is_empty() {
-        println!("beyond the library's effects:");
+        outln!("beyond the library's effects:");
     }
     for (name, significant, evidence) in found {
         let mark = if significant {
@@ -245,9 +245,10 @@ pub fn print_diagnosis(
         } else {
             "not significant"
         };
-        println!("  {name:<25} {mark}");
-        println!("     {evidence}");
+        outln!("  {name:<25} {mark}");
+        outln!("     {evidence}");
     }
+    Ok(())
 }
 
 /// Runs `hyst diagnose`.
@@ -279,14 +280,14 @@ pub fn run(args: DiagnoseArgs) -> Result<()> {
             .with_context(|| format!("{}: cannot write", path.display()))?;
     }
     if args.common.json {
-        println!(
+        outln!(
             "{}",
             serde_json::to_string_pretty(&diagnosis_json(
                 &problem, &outcome, &d, &suspects, &beyond
             ))?
         );
     } else {
-        print_diagnosis(&problem, &outcome, &d, &suspects, &beyond);
+        print_diagnosis(&problem, &outcome, &d, &suspects, &beyond)?;
     }
     Ok(())
 }

@@ -91,17 +91,21 @@ pub fn run(args: DiscoverArgs) -> Result<()> {
             &beyond,
         );
         obj["ladder"] = json!(discovery.rungs);
-        println!("{}", serde_json::to_string_pretty(&obj)?);
+        outln!("{}", serde_json::to_string_pretty(&obj)?);
     } else {
-        println!(
+        outln!(
             "{:<44} {:>6} {:>9} {:>9} {:>10}",
-            "model", "params", "NRMSE", "energy", "delta-BIC"
+            "model",
+            "params",
+            "NRMSE",
+            "energy",
+            "delta-BIC"
         );
         for r in &discovery.rungs {
             let d = r
                 .delta_bic
                 .map_or_else(|| "-".to_string(), |d| format!("{d:.0}"));
-            println!(
+            outln!(
                 "{:<44} {:>6} {:>9.4} {:>8.1}% {:>10}",
                 r.model,
                 r.params,
@@ -111,7 +115,7 @@ pub fn run(args: DiscoverArgs) -> Result<()> {
             );
         }
         let (first, final_) = (discovery.rungs[0].nrmse, last.outcome.scores.nrmse);
-        println!(
+        outln!(
             "error fell {:.1}x, from {first:.4} to {final_:.4}\n",
             first / final_
         );
@@ -121,7 +125,7 @@ pub fn run(args: DiscoverArgs) -> Result<()> {
             &last.diagnosis,
             &last.suspects,
             &beyond,
-        );
+        )?;
     }
     Ok(())
 }

@@ -115,14 +115,14 @@ pub fn run_fe(args: FeArgs) -> anyhow::Result<()> {
         if let Some(Ok(curve)) = &primary {
             v["primary_curve"] = serde_json::to_value(curve)?;
         }
-        println!("{}", serde_json::to_string_pretty(&v)?);
+        outln!("{}", serde_json::to_string_pretty(&v)?);
     } else {
         for (key, value) in &args.overrides {
-            println!("  {key} = {value} (--set)");
+            outln!("  {key} = {value} (--set)");
         }
-        print_summary(&summary);
+        print_summary(&summary)?;
         if let (Some(Ok(curve)), Some(path)) = (&primary, &args.backbone) {
-            print_primary(curve, path);
+            print_primary(curve, path)?;
         }
     }
     if let Some(Err(e)) = primary {
@@ -178,8 +178,8 @@ fn write_backbone(
     Ok(primary)
 }
 
-fn print_primary(c: &PrimaryCurve, path: &std::path::Path) {
-    println!(
+fn print_primary(c: &PrimaryCurve, path: &std::path::Path) -> std::io::Result<()> {
+    outln!(
         "  PHM primary curve (deg, kN m), written to {}:",
         path.display()
     );
@@ -189,50 +189,63 @@ fn print_primary(c: &PrimaryCurve, path: &std::path::Path) {
         ("peak", c.peak),
         ("deterioration", c.deterioration),
     ] {
-        println!("    {name:<13} ({:.5}, {:.2})", p[0], p[1]);
+        outln!("    {name:<13} ({:.5}, {:.2})", p[0], p[1]);
     }
+    Ok(())
 }
 
-fn print_summary(s: &Summary) {
-    println!(
+fn print_summary(s: &Summary) -> std::io::Result<()> {
+    outln!(
         "{} ({} materials){}",
         s.specimen,
         s.materials,
         if s.interrupted { ", INTERRUPTED" } else { "" }
     );
-    println!(
+    outln!(
         "  mesh: {} hexahedra, {} trusses, {} nodes at {} mm (aspect <= {:.2})",
-        s.elements, s.trusses, s.nodes, s.element_size_mm, s.mesh.max_aspect
+        s.elements,
+        s.trusses,
+        s.nodes,
+        s.element_size_mm,
+        s.mesh.max_aspect
     );
-    println!(
+    outln!(
         "  time step {:.3e} s (hexahedra {:.3e}, trusses {:.3e}); added mass {:.1} kg ({:.2}%)",
-        s.time_step.dt, s.time_step.hex, s.time_step.truss, s.added_mass_kg, s.added_mass_percent
+        s.time_step.dt,
+        s.time_step.hex,
+        s.time_step.truss,
+        s.added_mass_kg,
+        s.added_mass_percent
     );
-    println!(
+    outln!(
         "  {} steps to t = {:.4e} s on {} threads in {:.1} s ({:.0} ns per element-step)",
-        s.steps, s.time_s, s.threads, s.wall_s, s.ns_per_element_step
+        s.steps,
+        s.time_s,
+        s.threads,
+        s.wall_s,
+        s.ns_per_element_step
     );
     match s.initial_stiffness {
-        Some(k) => println!(
+        Some(k) => outln!(
             "  initial stiffness {:.0} kN m/rad ({:.4} x Saint-Venant GJ/L = {:.0})",
             k,
             k / s.saint_venant_stiffness,
             s.saint_venant_stiffness
         ),
-        None => println!("  initial stiffness: not enough twist yet"),
+        None => outln!("  initial stiffness: not enough twist yet"),
     }
     if let Some(t) = s.cracking_torque {
-        println!("  cracking torque {t:.2} kN m");
+        outln!("  cracking torque {t:.2} kN m");
     }
     if let Some(t) = s.peak_torque {
-        println!("  peak torque {t:.2} kN m");
+        outln!("  peak torque {t:.2} kN m");
     }
-    println!("  max torque {:.2} kN m", s.max_torque);
+    outln!("  max torque {:.2} kN m", s.max_torque);
     if let Some(c) = &s.table_2_1 {
         let r = &c.reference;
         let here =
             |e: Option<f64>| e.map_or("not reached".into(), |e| format!("{:+.1}%", 100.0 * e));
-        println!(
+        outln!(
             "  thesis Table 2.1: cracking, test {:.1} kN m (here {}), thesis FE {:.1}; ultimate, test {:.1} kN m (here {}), thesis FE {:.1}",
             r.test_cracking_knm,
             here(c.cracking_error),
@@ -261,13 +274,13 @@ fn print_summary(s: &Summary) {
                     Some(p) => format!(", after the peak (at {p:.4} rad)"),
                     None => String::new(),
                 };
-                println!("  {set} bars first yield at {t:.2} kN m, twist {th:.4} rad{when}");
+                outln!("  {set} bars first yield at {t:.2} kN m, twist {th:.4} rad{when}");
             }
-            _ => println!("  {set} bars do not yield"),
+            _ => outln!("  {set} bars do not yield"),
         }
     }
     for st in &s.section {
-        println!(
+        outln!(
             "  section at {}: torque {:.2} kN m (section {:.2}), max shear {:.2} MPa, shear-flow thickness ({:.0}% of the torque) {}",
             st.stage,
             st.torque_knm,
@@ -278,32 +291,34 @@ fn print_summary(s: &Summary) {
                 .map_or("none".to_string(), |t| format!("{t:.1} mm"))
         );
     }
-    println!(
+    outln!(
         "  KE/IE max {:.4}, hourglass share max {:.4}, energy imbalance max {:.2e}",
-        s.max_ke_ie_ratio, s.max_hourglass_share, s.max_energy_imbalance
+        s.max_ke_ie_ratio,
+        s.max_hourglass_share,
+        s.max_energy_imbalance
     );
     if let Some(c) = &s.checks_to_peak {
-        println!(
+        outln!(
             "  up to the peak (t = {:.4e} s): KE/IE max {:.4}, hourglass share max {:.4}, energy imbalance max {:.2e}",
             c.t_peak, c.max_ke_ie_ratio, c.max_hourglass_share, c.max_energy_imbalance
         );
         if c.quasi_static {
-            println!("  quasi-static checks up to the peak: all hold");
+            outln!("  quasi-static checks up to the peak: all hold");
         }
         for f in &c.failures {
-            println!("  CHECK FAILED up to the peak: {f}");
+            outln!("  CHECK FAILED up to the peak: {f}");
         }
     }
     if s.quasi_static {
-        println!("  quasi-static checks over the whole run: all hold");
+        outln!("  quasi-static checks over the whole run: all hold");
     } else {
         for f in &s.failures {
-            println!("  CHECK FAILED over the whole run: {f}");
+            outln!("  CHECK FAILED over the whole run: {f}");
         }
     }
     for o in &s.outputs {
         if o.extension().is_some_and(|e| e == "csv" || e == "svg") {
-            println!("  wrote {}", o.display());
+            outln!("  wrote {}", o.display());
         }
     }
     let vtk = s
@@ -312,6 +327,7 @@ fn print_summary(s: &Summary) {
         .filter(|o| o.extension().is_some_and(|e| e == "vtk"))
         .count();
     if vtk > 0 {
-        println!("  wrote {vtk} VTK files");
+        outln!("  wrote {vtk} VTK files");
     }
+    Ok(())
 }

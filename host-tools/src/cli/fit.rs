@@ -327,14 +327,17 @@ pub fn run(args: FitArgs) -> Result<()> {
                     .collect::<serde_json::Map<_, _>>()
             })
             .into();
-        println!("{}", serde_json::to_string_pretty(&obj)?);
+        outln!("{}", serde_json::to_string_pretty(&obj)?);
     } else {
-        println!(
+        outln!(
             "model {}  method {}  NRMSE {:.4e}  ({} simulations, {seconds:.2} s)",
-            model, outcome.method, outcome.scores.nrmse, outcome.evaluations
+            model,
+            outcome.method,
+            outcome.scores.nrmse,
+            outcome.evaluations
         );
         if let Some(between) = forcing(&problem) {
-            println!("  force {between} between samples");
+            outln!("  force {between} between samples");
         }
         for (name, v) in &outcome.values {
             let fixed = if problem.par.fixed.contains_key(name) {
@@ -342,28 +345,29 @@ pub fn run(args: FitArgs) -> Result<()> {
             } else {
                 ""
             };
-            println!("  {name:<10} {v:>14.6e}{fixed}");
+            outln!("  {name:<10} {v:>14.6e}{fixed}");
         }
-        println!("{}", outcome.identifiability.summary());
+        outln!("{}", outcome.identifiability.summary());
         for at in &outcome.at_bounds {
-            println!("Note: {at}.");
+            outln!("Note: {at}.");
         }
         if let Some(chosen) = &outcome.polished_from {
-            println!(
+            outln!(
                 "NSGA-II chose a set with NRMSE {:.4e}; least squares from there reached {:.4e}.",
-                chosen.nrmse, outcome.scores.nrmse
+                chosen.nrmse,
+                outcome.scores.nrmse
             );
         }
         if let Some(screening) = &outcome.screening {
-            println!("Note: {screening}.");
+            outln!("Note: {screening}.");
         }
         match &outcome.search {
-            Some(Ok(lanes)) => println!("Note: {lanes}."),
-            Some(Err(core)) => println!("Note: {core}."),
+            Some(Ok(lanes)) => outln!("Note: {lanes}."),
+            Some(Err(core)) => outln!("Note: {core}."),
             None => {}
         }
         if let Some(out) = &args.out {
-            println!("parameters written to {}", out.display());
+            outln!("parameters written to {}", out.display());
         }
     }
     Ok(())

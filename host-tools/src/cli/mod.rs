@@ -1,5 +1,14 @@
 //! The `hyst` command line: one module per verb.
 
+/// `println!` that hands a failed write (a closed pipe: `hyst fit ... | head`) to the caller
+/// with `?` instead of panicking, so that `main` can end quietly.
+macro_rules! outln {
+    ($($arg:tt)*) => {{
+        use std::io::Write as _;
+        writeln!(std::io::stdout(), $($arg)*)?
+    }};
+}
+
 pub mod columns;
 pub mod diagnose;
 pub mod discover;

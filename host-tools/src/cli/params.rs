@@ -14,14 +14,21 @@ pub struct ParamsArgs {
 
 /// Prints the parameter table.
 pub fn run(args: ParamsArgs) -> anyhow::Result<()> {
-    println!(
+    outln!(
         "{:<10} {:<6} {:<5} {:>6}  description",
-        "name", "symbol", "eq.", "off"
+        "name",
+        "symbol",
+        "eq.",
+        "off"
     );
     for s in args.model.params() {
-        println!(
+        outln!(
             "{:<10} {:<6} {:<5} {:>6}  {}",
-            s.name, s.symbol, s.equation, s.off, s.doc
+            s.name,
+            s.symbol,
+            s.equation,
+            s.off,
+            s.doc
         );
     }
     Ok(())

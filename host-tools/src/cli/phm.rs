@@ -221,10 +221,10 @@ pub fn fit(args: &FitArgs) -> Result<()> {
             "identifiability": outcome.identifiability,
             "identifiability_summary": outcome.identifiability.summary(),
         });
-        println!("{}", serde_json::to_string_pretty(&obj)?);
+        outln!("{}", serde_json::to_string_pretty(&obj)?);
         return Ok(());
     }
-    println!(
+    outln!(
         "model {PHM_MODEL}  method lsq  NRMSE {:.4e}  ({} iterations, {} simulations, {seconds:.2} s)",
         outcome.nrmse, outcome.iterations, outcome.evaluations
     );
@@ -232,7 +232,7 @@ pub fn fit(args: &FitArgs) -> Result<()> {
         .into_iter()
         .enumerate()
     {
-        println!(
+        outln!(
             "  primary curve, {} (twist {tu}, torque {mu}, +- standard error):",
             ["positive", "negative"][d]
         );
@@ -243,9 +243,12 @@ pub fn fit(args: &FitArgs) -> Result<()> {
             .iter()
             .zip(&outcome.point_std[d])
         {
-            println!(
+            outln!(
                 "    ({:.5} +- {:.2e}, {:.4} +- {:.2e})",
-                p[0], s[0], p[1], s[1]
+                p[0],
+                s[0],
+                p[1],
+                s[1]
             );
         }
     }
@@ -261,11 +264,11 @@ pub fn fit(args: &FitArgs) -> Result<()> {
             Some((_, s)) => format!("+- {s:.2e}"),
             None => "(fixed)".to_string(),
         };
-        println!("  {:<10} {value:>12.5}  {note}", v.name);
+        outln!("  {:<10} {value:>12.5}  {note}", v.name);
     }
-    println!("{}", outcome.identifiability.summary());
+    outln!("{}", outcome.identifiability.summary());
     if let Some(out) = &args.out {
-        println!("parameters written to {}", out.display());
+        outln!("parameters written to {}", out.display());
     }
     Ok(())
 }

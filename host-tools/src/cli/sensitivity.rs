@@ -69,16 +69,22 @@ pub fn run(args: SensitivityArgs) -> Result<()> {
     let mut ranked: Vec<_> = sweeps.iter().collect();
     ranked.sort_by_key(|s| s.rank);
     if args.json {
-        println!("{}", serde_json::to_string_pretty(&ranked)?);
+        outln!("{}", serde_json::to_string_pretty(&ranked)?);
     } else {
-        println!(
+        outln!(
             "{:<12} {:>14} {:>18} {:>5}",
-            "parameter", "value", "max e (eq. 3.25)", "rank"
+            "parameter",
+            "value",
+            "max e (eq. 3.25)",
+            "rank"
         );
         for s in ranked {
-            println!(
+            outln!(
                 "{:<12} {:>14.6e} {:>18.6e} {:>5}",
-                s.name, s.nominal, s.max_error, s.rank
+                s.name,
+                s.nominal,
+                s.max_error,
+                s.rank
             );
         }
     }

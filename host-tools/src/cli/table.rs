@@ -37,7 +37,7 @@ fn check(file: &PathBuf) -> Result<()> {
     let bytes = std::fs::read(file).with_context(|| format!("{}: cannot read", file.display()))?;
     let (header, listing) = export::verify(&bytes)
         .map_err(|e| anyhow!("{}: table refused: {e} ({e:?})", file.display()))?;
-    println!("{}: valid, {}", file.display(), export::describe(&header));
+    outln!("{}: valid, {}", file.display(), export::describe(&header));
     let num = |x: f64| format!("{x}");
     match listing {
         Listing::Bwbn(elements) => {
@@ -51,7 +51,7 @@ fn check(file: &PathBuf) -> Result<()> {
                     Some(l) => format!("energy_limit={}", num(l)),
                     None => "energy_limit=none".into(),
                 });
-                println!("  element {i}: {}", parts.join(" "));
+                outln!("  element {i}: {}", parts.join(" "));
             }
         }
         Listing::Phm(elements) => {
@@ -62,17 +62,17 @@ fn check(file: &PathBuf) -> Result<()> {
                     .join(" ")
             };
             for (i, e) in elements.iter().enumerate() {
-                println!("  element {i}: positive {}", curve(&e.positive));
-                println!("             negative {}", curve(&e.negative));
+                outln!("  element {i}: positive {}", curve(&e.positive));
+                outln!("             negative {}", curve(&e.negative));
                 if e.coefficients.is_empty() {
-                    println!("             coefficients: the thesis' values");
+                    outln!("             coefficients: the thesis' values");
                 } else {
                     let c: Vec<String> = e
                         .coefficients
                         .iter()
                         .map(|(n, v)| format!("{n}={}", num(*v)))
                         .collect();
-                    println!(
+                    outln!(
                         "             coefficients (others the thesis'): {}",
                         c.join(" ")
                     );
