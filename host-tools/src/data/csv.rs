@@ -473,6 +473,20 @@ impl Reader {
             ));
         }
         let value = self.col.unit.map_or(value, |u| u.to_canonical(value));
+        if !value.is_finite() {
+            return Err(DataError::at(
+                file,
+                line,
+                column,
+                format!(
+                    "expected a number for column '{}' that stays finite in {}, found '{text}'",
+                    self.col.text,
+                    self.col
+                        .unit
+                        .map_or("", |u| u.quantity().canonical().symbol())
+                ),
+            ));
+        }
         if self.increasing {
             if let Some((prev, prev_line, prev_text)) = &self.last {
                 if value <= *prev {

@@ -238,16 +238,40 @@ fn friction(file: &Path, obj: &Map<String, Value>) -> Result<Raw, DataError> {
     })
 }
 
-fn series(name: String, unit: Unit, values: Vec<f64>, skip: usize) -> Series {
-    Series {
-        name,
-        unit,
-        values: values
-            .into_iter()
-            .skip(skip)
-            .map(|v| unit.to_canonical(v))
-            .collect(),
-    }
+/// The values from `skip` on, in the canonical unit; a value too large for it is an error at
+/// its place in the document.
+fn series(
+    file: &Path,
+    name: String,
+    unit: Unit,
+    values: Vec<f64>,
+    skip: usize,
+) -> Result<Series, DataError> {
+    let values = values
+        .into_iter()
+        .enumerate()
+        .skip(skip)
+        .map(|(k, v)| {
+            let canonical = unit.to_canonical(v);
+            if canonical.is_finite() {
+                return Ok(canonical);
+            }
+            let place = if name.contains("[*]") {
+                name.replacen("[*]", &format!("[{k}]"), 1)
+            } else {
+                format!("{name}[{k}]")
+            };
+            Err(DataError::json(
+                file,
+                place,
+                format!(
+                    "expected a number that stays finite in {}, found {v:e} {unit}",
+                    unit.quantity().canonical().symbol()
+                ),
+            ))
+        })
+        .collect::<Result<_, _>>()?;
+    Ok(Series { name, unit, values })
 }
 
 /// Parses a JSON document of one of the known layouts.
@@ -343,7 +367,7 @@ pub(crate) fn parse(file: &Path, text: &str, options: &ReadOptions) -> Result<Re
                     ),
                 ));
             }
-            Some(series(name, unit, values, skip))
+            Some(series(file, name, unit, values, skip)?)
         }
         (None, None) => None,
     };
@@ -352,8 +376,8 @@ pub(crate) fn parse(file: &Path, text: &str, options: &ReadOptions) -> Result<Re
     Ok(Record::new(
         file,
         options.input.unwrap_or(Channel::Displacement),
-        Some(series(dn, du, dv, skip)),
-        Some(series(f_name, fu, fv, skip)),
+        Some(series(file, dn, du, dv, skip)?),
+        Some(series(file, f_name, fu, fv, skip)?),
         time,
     )?
     .with_comments(raw.comments)

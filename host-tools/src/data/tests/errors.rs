@@ -33,6 +33,14 @@ fn malformed_csv_table() {
             "inf.csv:2:2: expected a finite number for column 'force_kN', found '1e400'",
         ),
         (
+            // Finite as written, infinite in millimetres.
+            "metres.csv",
+            "displacement (m),force (kN)\n0,0\n1e306,1\n".into(),
+            d.clone(),
+            "metres.csv:3:1: expected a number for column 'displacement (m)' that stays finite \
+             in mm, found '1e306'",
+        ),
+        (
             "empty.csv",
             String::new(),
             d.clone(),

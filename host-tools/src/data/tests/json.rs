@@ -131,7 +131,7 @@ fn simcenter_braces_by_convention() {
 
 #[test]
 fn json_errors_name_the_place() {
-    let cases: [(&str, &str); 6] = [
+    let cases: [(&str, &str); 8] = [
         (
             r#"{"data": {"disp": [1, 2], "force": [1, "x"]}}"#,
             r#"t.json: at data.force[1]: expected a finite number, found "x""#,
@@ -153,6 +153,15 @@ fn json_errors_name_the_place() {
         (
             r#"{"data": [[0, 1, 2], [0, 1, 2]], "time units": "s", "displacement units": "in", "friction force units": "kip"}"#,
             "t.json: at data[1][0]: expected time to increase after 0 s, found 0 s",
+        ),
+        (
+            // Finite as written, infinite in millimetres.
+            r#"{"test": {"displacement": [0, 1e307], "force": [0, 1]}, "source": [{"units": ["inches", "lbf"]}]}"#,
+            "t.json: at test.displacement[1]: expected a number that stays finite in mm, found 1e307 in",
+        ),
+        (
+            r#"{"data": [[0, 0, 0], [1, 1, 1e308]], "time units": "s", "displacement units": "in", "friction force units": "kip"}"#,
+            "t.json: at data[1][2]: expected a number that stays finite in kN, found 1e308 kip",
         ),
     ];
     for (text, expected) in cases {
