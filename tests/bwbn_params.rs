@@ -1,7 +1,8 @@
 //! Parameter validation: what cannot work is rejected with the field and the
 //! rule; what is valid (hardening plain Bouc-Wen, anti-pinching) is accepted.
 
-use hysteresis::bwbn::{BwbnParams, EffectKind, EffectSet, ParamError, Rule};
+use hysteresis::bwbn::{Bwbn, BwbnParams, EffectKind, EffectSet, ParamError, Rule};
+use hysteresis::{Element, Fixed, Scalar};
 
 fn build(set: EffectSet, over: &[(&str, f64)]) -> Result<BwbnParams<f64>, ParamError> {
     BwbnParams::from_named(set, |n| {
@@ -227,6 +228,47 @@ fn asymmetry_factors_must_lie_strictly_between_minus_one_and_one() {
         err(asym, &[("asym_stiffness", f64::NAN)]),
         ("asym_stiffness", Rule::NotFinite)
     );
+}
+
+/// The strength factors `(1 ± a)^-n` must fit the arithmetic, or every step towards the
+/// weak side fails: refused when the set is built, in each arithmetic at its own limit, while a
+/// strong but representable asymmetry still steps both ways.
+#[test]
+fn asymmetry_factors_that_overflow_the_arithmetic_are_refused() {
+    fn params<S: Scalar>(a: f64, n: f64) -> Result<BwbnParams<S>, ParamError> {
+        BwbnParams::from_named(with(EffectKind::Asymmetry), |name| {
+            let v = match name {
+                "k0" => 6.0,
+                "alpha" => 0.2,
+                "n" => n,
+                "beta" => 2.0,
+                "gamma" => -1.0,
+                "asym_strength" => a,
+                _ => return None,
+            };
+            Some(S::from_f64(v))
+        })
+    }
+    let refused = |e: ParamError| (e.field, e.rule);
+    let overflow = ("asym_strength", Rule::DerivedOverflow);
+    // (1 - 0.999999)^-60 = 1e360 and (1 - 0.9999)^-12 = 1e48: beyond f64 and f32.
+    assert_eq!(
+        refused(params::<f64>(0.999999, 60.0).unwrap_err()),
+        overflow
+    );
+    assert_eq!(refused(params::<f32>(-0.9999, 12.0).unwrap_err()), overflow);
+    // 0.01^-2.5 = 1e5, beyond Q15.16's 32767.
+    assert_eq!(refused(params::<Fixed>(0.99, 2.5).unwrap_err()), overflow);
+    fn steps_both_ways<S: Scalar>(p: BwbnParams<S>) {
+        for u in [0.01, -0.01] {
+            let mut el = Bwbn::new(p);
+            assert!(el.set_trial(S::from_f64(u)).is_ok(), "{} at {u}", S::NAME);
+        }
+    }
+    // 0.1^-2.5 = 316: representable everywhere.
+    steps_both_ways(params::<f64>(0.9, 2.5).unwrap());
+    steps_both_ways(params::<f32>(0.9, 2.5).unwrap());
+    steps_both_ways(params::<Fixed>(0.9, 2.5).unwrap());
 }
 
 #[test]

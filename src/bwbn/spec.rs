@@ -73,6 +73,9 @@ pub enum Rule {
     /// The pinching function h(z) (eq. 3.9) would become negative (zeta1 > 1)
     /// inside `[0, energy_limit]`, which reverses the hysteretic rate.
     PinchingReversesRate,
+    /// A factor derived from this parameter and the others (for asymmetry the
+    /// strength factors `(1 ± a)^-n`) is too large for the arithmetic.
+    DerivedOverflow,
     /// A required parameter is missing.
     Missing,
     /// The name is not a parameter of the model.
@@ -94,6 +97,9 @@ impl Rule {
             }
             Rule::PinchingReversesRate => {
                 "makes zeta1 exceed 1 within [0, energy_limit], so h(z) (eq. 3.9) turns negative"
+            }
+            Rule::DerivedOverflow => {
+                "makes a factor derived from it (for asymmetry (1 ± a)^-n) too large for the arithmetic"
             }
             Rule::Missing => "is required but missing",
             Rule::Unknown => "is not a parameter of this model",

@@ -69,11 +69,17 @@ impl<S: Scalar> Asymmetry<S> {
         check_fraction("asym_strength", a)?;
         check_fraction("asym_stiffness", b)?;
         let minus_n = -base.n;
+        let (nu_pos, nu_neg) = ((S::ONE + a).powf(minus_n), (S::ONE - a).powf(minus_n));
+        // With a near ±1 and a large n one factor leaves the arithmetic's range (f32 `inf`,
+        // a saturated Q15.16), and every step towards that side would fail.
+        if !(nu_pos.is_finite() && nu_neg.is_finite()) {
+            return Err(ParamError::new("asym_strength", Rule::DerivedOverflow));
+        }
         Ok(Asymmetry {
             a,
             b,
-            nu_pos: (S::ONE + a).powf(minus_n),
-            nu_neg: (S::ONE - a).powf(minus_n),
+            nu_pos,
+            nu_neg,
         })
     }
 
