@@ -4,6 +4,7 @@
 mod common;
 
 use hysteresis::bwbn::{BoucWen, BwbnParams, Forcing, Sdof};
+use hysteresis::{Fixed, Scalar, StepError};
 
 /// alpha = 1 makes the oscillator linear: u'' + 2 xi w u' + w^2 u = f(t).
 /// Under the ramp f = c t from rest (exactly linear between samples, so the
@@ -99,6 +100,40 @@ fn hermite_forcing_refuses_non_finite_rates() {
             assert_eq!(osc.state(), before);
         }
     }
+}
+
+/// The Q15.16 clock runs out at 32767 s: the step past it is refused and changes nothing,
+/// rather than carrying on at a saturated time.
+#[test]
+fn the_fixed_point_clock_refuses_to_saturate() {
+    let p = BwbnParams::plain(
+        BoucWen::new(
+            Fixed::from_f64(6.0),
+            Fixed::from_f64(0.2),
+            Fixed::from_f64(1.2),
+            Fixed::from_f64(2.0),
+            Fixed::from_f64(-1.0),
+        )
+        .unwrap(),
+    );
+    let mut osc = Sdof::new(p, Fixed::from_f64(0.05)).unwrap();
+    let mut taken = 0;
+    loop {
+        let before = osc.state();
+        match osc.step(Fixed::from_f64(1000.0), Fixed::ZERO) {
+            Ok(s) => {
+                assert!(s.t.is_finite());
+                taken += 1;
+            }
+            Err(e) => {
+                assert_eq!(e, StepError::NonFiniteState);
+                assert_eq!(osc.state(), before);
+                break;
+            }
+        }
+        assert!(taken < 40, "the clock never ran out");
+    }
+    assert_eq!(taken, 32, "32 steps of 1000 s fit below 32767 s");
 }
 
 /// A time step far shorter than the next (here 1e-300 s, then 0.01 s) does not

@@ -36,7 +36,9 @@ use crate::scalar::Scalar;
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct SdofState<S> {
-    /// Time.
+    /// Time since the start (or the last [`Sdof::reset`]). In Q15.16 it
+    /// reaches the arithmetic's end after 32767 s (9.1 h); a step past it
+    /// fails with [`StepError::NonFiniteState`] and changes nothing.
     pub t: S,
     /// Displacement u (y1).
     pub u: S,
@@ -74,6 +76,12 @@ pub enum Forcing<S> {
     /// The cubic Hermite polynomial with value `next` at the end of the step
     /// and rates (per second) `rate_now` and `rate_next` at its two ends. A
     /// force that is itself a cubic in time is reproduced exactly.
+    ///
+    /// In Q15.16 its coefficients in powers of t (see [`Forcing::polynomial`])
+    /// are quotients by `dt^2`: a step under about 2.7 ms is refused
+    /// ([`StepError::NonFiniteInput`]: `dt^2` rounds to zero), and just above
+    /// that the cubic coefficient is mostly rounding. Fixed-point controllers
+    /// drive the oscillator with [`Forcing::Linear`].
     Hermite {
         /// Forcing at the end of the step.
         next: S,
@@ -197,12 +205,12 @@ impl<S: Scalar, X: Effect<S>> Sdof<S, X> {
         let (zs, tol) = (params.z_scale(), control.tol);
         let k0 = params.base().k0;
         let k_hys = k0 * (S::ONE - params.base().alpha);
-        [
+        integrate::resolvable([
             tol * zs,
             tol * zs * k0.sqrt(),
             tol * zs,
             tol * k_hys.max(S::EPSILON) * zs * zs,
-        ]
+        ])
     }
 
     /// The same oscillator with another integration control (state kept).
@@ -333,7 +341,9 @@ impl<S: Scalar, X: Effect<S>> Sdof<S, X> {
             _ => rhs(S::ZERO, &y0)?,
         };
         let end = integrate::advance(&self.control, &mut rhs, y0, dy0, dt, &self.atol, self.h)?;
-        if !end.y.iter().chain(end.dy.iter()).all(|v| v.is_finite()) {
+        // The clock too: Q15.16 runs out at 32767 s (9.1 h).
+        let t = s.t + dt;
+        if !(t.is_finite() && end.y.iter().chain(end.dy.iter()).all(|v| v.is_finite())) {
             return Err(StepError::NonFiniteState);
         }
         if end.y[3] > self.params.energy_limit() {
@@ -341,7 +351,7 @@ impl<S: Scalar, X: Effect<S>> Sdof<S, X> {
         }
         let [u, v, z, energy] = end.y;
         self.state = SdofState {
-            t: s.t + dt,
+            t,
             u,
             v,
             z,

@@ -297,6 +297,17 @@ fn factor<S: Scalar>(thresholds: &[f32; FACTORS.len()], r: S) -> S {
     S::lit(FACTORS[i])
 }
 
+/// Absolute tolerances no finer than the arithmetic can check: a sub-step's
+/// error estimate combines four or more rounded stage terms, so in fixed point
+/// it carries a few least-significant bits of rounding noise, and a tolerance
+/// below that (a small Zu, or the energy's `tol k_hys Zu^2`, in Q15.16) could
+/// never be met. Floating point is not affected (its floor is the smallest
+/// normal number).
+pub(crate) fn resolvable<S: Scalar, const N: usize>(atol: [S; N]) -> [S; N] {
+    let floor = S::MIN_POSITIVE * S::from_i32(4);
+    atol.map(|a| a.max(floor))
+}
+
 /// The result of integrating over one increment.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Advanced<S, const N: usize> {

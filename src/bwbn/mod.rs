@@ -131,10 +131,10 @@ impl<S: Scalar, X: Effect<S>> Bwbn<S, X> {
         let k_hys = params
             .stiffness(extra, &Self::at(S::ZERO, S::ZERO, S::ZERO, S::ONE))
             .hys;
-        [
+        integrate::resolvable([
             control.tol * zs,
             control.tol * k_hys.abs().max(S::EPSILON) * zs * zs,
-        ]
+        ])
     }
 
     fn virgin() -> State<S> {

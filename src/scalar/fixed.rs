@@ -265,6 +265,7 @@ impl Scalar for Fixed {
     const ONE: Self = Fixed(ONE_RAW);
     const MAX: Self = Fixed(POS_INF - 1);
     const EPSILON: Self = Fixed(1);
+    const MIN_POSITIVE: Self = Fixed(1);
     const NAME: &'static str = "q16";
 
     /// Rounds to nearest (ties away from zero), saturating; NaN becomes the

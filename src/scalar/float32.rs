@@ -11,6 +11,7 @@ impl Scalar for f32 {
     const ONE: Self = 1.0;
     const MAX: Self = f32::MAX;
     const EPSILON: Self = f32::EPSILON;
+    const MIN_POSITIVE: Self = f32::MIN_POSITIVE;
     const NAME: &'static str = "f32";
 
     #[inline(always)]

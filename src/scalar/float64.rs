@@ -15,6 +15,7 @@ impl Scalar for f64 {
     const ONE: Self = 1.0;
     const MAX: Self = f64::MAX;
     const EPSILON: Self = f64::EPSILON;
+    const MIN_POSITIVE: Self = f64::MIN_POSITIVE;
     const NAME: &'static str = "f64";
 
     #[inline(always)]

@@ -59,6 +59,10 @@ pub trait Scalar:
     /// The spacing of representable values near 1 (machine epsilon, or one
     /// least-significant bit for fixed point).
     const EPSILON: Self;
+    /// The smallest positive value: one least-significant bit in fixed point,
+    /// where the resolution is absolute, the smallest normal number in floating
+    /// point.
+    const MIN_POSITIVE: Self;
     /// Short name used in table headers and error messages (`"f64"`, `"f32"`, `"q16"`).
     const NAME: &'static str;
 

@@ -146,6 +146,48 @@ pub fn z_tends_to_zu() {
     monotonic::<Fixed>(1e-3);
 }
 
+/// A Zu of 0.05 (a small unit of displacement): every step of cycles to
+/// +-5 Zu is taken, and z reaches Zu from below. In Q15.16 the tolerances of
+/// such a model would be below one least-significant bit without the floor of
+/// `integrate::resolvable`, and steps failed.
+fn small_zu<S: Scalar>() {
+    let (n, zu) = (1.2f64, 0.05f64);
+    let beta_gamma = (1.0 / zu).powf(n);
+    let b = BoucWen::new(
+        S::from_i32(6),
+        S::lit(0.1),
+        S::lit(1.2),
+        S::from_f64(0.75 * beta_gamma),
+        S::from_f64(0.25 * beta_gamma),
+    )
+    .expect("a valid set");
+    let mut el = Bwbn::new(BwbnParams::plain(b));
+    let mut peak = 0.0f64;
+    for i in 1..=300 {
+        let u = 5.0 * zu * libm::sin(2.0 * core::f64::consts::PI * i as f64 / 100.0);
+        commit(&mut el, S::from_f64(u));
+        peak = peak.max(Scalar::abs(el.committed().z.to_f64()));
+    }
+    report!(
+        "  {}: Zu = 0.05, largest |z| / Zu = {}",
+        S::NAME,
+        (peak / zu) as f32
+    );
+    assert!(
+        peak > 0.9 * zu && peak < 1.01 * zu,
+        "{}: largest |z| {} for Zu 0.05",
+        S::NAME,
+        peak as f32
+    );
+}
+
+/// A small Zu is integrated in every arithmetic.
+pub fn small_zu_every_arithmetic() {
+    small_zu::<f64>();
+    small_zu::<f32>();
+    small_zu::<Fixed>();
+}
+
 /// n = 1 reproduces the exponential closed form.
 pub fn n_one_closed_form() {
     n_one::<f64>(1e-7);

@@ -39,4 +39,8 @@ pub const CASES: &[Case] = &[
     ),
     ("bwbn::limits::z_tends_to_zu", limits::z_tends_to_zu),
     ("bwbn::limits::n_one_closed_form", limits::n_one_closed_form),
+    (
+        "bwbn::limits::small_zu_every_arithmetic",
+        limits::small_zu_every_arithmetic,
+    ),
 ];
