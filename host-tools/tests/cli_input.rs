@@ -72,3 +72,19 @@ fn a_closed_pipe_ends_quietly() {
         assert!(out.status.success(), "{args:?}: {stderr}");
     }
 }
+
+/// A key given twice in a JSON file is refused with its place: `serde_json` alone would keep the
+/// last one, and `k0` would silently be 60.
+#[test]
+fn a_repeated_json_key_is_refused() {
+    let history = write("history.csv", "displacement (mm)\n0\n1\n2\n");
+    let params = write(
+        "repeated.json",
+        r#"{"model": "bw", "k0": 6, "alpha": 0.2, "n": 1.2, "beta": 2, "gamma": -1, "k0": 60}"#,
+    );
+    let e = cli::err(hyst(&["simulate", &history, "--params", &params]));
+    assert!(
+        e.contains("repeated.json:1:") && e.contains("key 'k0' given twice"),
+        "{e}"
+    );
+}

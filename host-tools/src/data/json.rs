@@ -283,7 +283,7 @@ pub(crate) fn parse(file: &Path, text: &str, options: &ReadOptions) -> Result<Re
         ));
     }
     let sample_rate = options.checked_sample_rate(file)?;
-    let root: Value = serde_json::from_str(text).map_err(|e| {
+    let root: Value = super::unique_keys::parse(text).map_err(|e| {
         DataError::at(
             file,
             e.line().max(1),

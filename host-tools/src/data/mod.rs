@@ -75,6 +75,7 @@ pub mod json;
 mod read;
 mod record;
 pub mod residuals;
+pub mod unique_keys;
 pub mod units;
 pub mod write;
 

@@ -76,7 +76,7 @@ pub fn read(paths: &[PathBuf]) -> Result<Sources> {
     for path in paths {
         let text = std::fs::read_to_string(path)
             .with_context(|| format!("{}: cannot read", path.display()))?;
-        let value: serde_json::Value = serde_json::from_str(&text).map_err(|e| {
+        let value = crate::data::unique_keys::parse(&text).map_err(|e| {
             anyhow!(
                 "{}:{}:{}: not valid JSON: {e}",
                 path.display(),

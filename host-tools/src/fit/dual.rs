@@ -160,6 +160,7 @@ impl<const N: usize> Scalar for Dual<N> {
     const ONE: Self = Self::cst(1.0);
     const MAX: Self = Self::cst(f64::MAX);
     const EPSILON: Self = Self::cst(f64::EPSILON);
+    const MIN_POSITIVE: Self = Self::cst(f64::MIN_POSITIVE);
     const NAME: &'static str = "dual";
 
     fn lit(x: f32) -> Self {

@@ -52,7 +52,7 @@ impl ParamFile {
 
     /// Parses the text of a parameter file.
     pub fn parse(path: &Path, text: &str) -> Result<Self> {
-        let value: Value = serde_json::from_str(text).map_err(|e| {
+        let value: Value = crate::data::unique_keys::parse(text).map_err(|e| {
             anyhow!(
                 "{}:{}:{}: not valid JSON: {e}",
                 path.display(),

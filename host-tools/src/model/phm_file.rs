@@ -89,7 +89,7 @@ impl PhmFile {
         let path = path.as_ref();
         let text = std::fs::read_to_string(path)
             .with_context(|| format!("{}: cannot read", path.display()))?;
-        let value: Value = serde_json::from_str(&text).map_err(|e| {
+        let value: Value = crate::data::unique_keys::parse(&text).map_err(|e| {
             anyhow!(
                 "{}:{}:{}: not valid JSON: {e}",
                 path.display(),
