@@ -147,13 +147,21 @@ impl<S: Scalar> Branch<S> {
         }
     }
 
-    /// Appends a reloading control point: the torque never falls while
-    /// reloading (it is raised to the previous torque if needed); a point that
-    /// does not advance the twist is dropped.
-    pub(crate) fn push_rising(&mut self, p: [S; 2]) {
+    /// Appends a reloading control point (loading rules 2-5, eqs 4-6),
+    /// projected like the unloading points (gaps G5 and G10 in
+    /// `docs/phm.md`): the torque never falls while reloading (it is raised
+    /// to the previous torque if needed), and the segment is no stiffer than
+    /// `cap` (`k_T1` of the direction reloaded towards): a point that the
+    /// equations put closer is moved along its torque level to where that
+    /// slope reaches it. So a point is only dropped when it lies behind the
+    /// previous one at the previous torque (it adds nothing), never because
+    /// eq. 5a put the crack-closing twist `theta_cr` at or past `theta_m`.
+    pub(crate) fn push_rising(&mut self, p: [S; 2], cap: S) {
         let [x0, y0] = self.last();
-        if p[0] > x0 {
-            self.append(p[0], p[1].max(y0));
+        let y = p[1].max(y0);
+        let x = p[0].max(x0 + (y - y0) / cap);
+        if x > x0 {
+            self.append(x, y);
         }
     }
 
@@ -168,15 +176,38 @@ impl<S: Scalar> Branch<S> {
         self.contact = self.first_contact(bound);
     }
 
+    /// Closes a rule branch like [`finish`](Self::finish), but the ray past
+    /// the last vertex must rise (gap G10): where the reloading rules left
+    /// their range and the last segment does not rise (eq. 6 puts `T'_m` at
+    /// or below the pinched line of eq. 5, eq. 4 gives a slope <= 0, or the
+    /// last vertex is the reversal point itself), the ray rises with `k`
+    /// (`k_T1` of the direction reloaded towards), so that it meets the
+    /// primary curve (rule 6), whose tail is flat (G7).
+    pub(crate) fn finish_rising<const N: usize>(&mut self, bound: &Backbone<S, N>, k: S) {
+        let n = self.n as usize;
+        if n >= 2 {
+            self.v[n - 1][2] = self.v[n - 2][2];
+        }
+        if !(self.v[n - 1][2] > S::ZERO) {
+            self.v[n - 1][2] = k;
+        }
+        self.contact = self.first_contact(bound);
+    }
+
     /// The first x >= x[0] where the branch reaches the bound: both are
     /// linear between the union of their breakpoints, so it is enough to
     /// look at those and interpolate.
     fn first_contact<const N: usize>(&self, bound: &Backbone<S, N>) -> S {
         let n = self.n as usize;
-        // Before the zero-torque vertex the torque is of the other sign and
-        // cannot reach the bound (which is positive): start the search there.
+        // Before the segment that ends at the zero-torque vertex the torque
+        // is of the other sign and cannot reach the bound (which is
+        // positive): start the search on that segment. (Not at the vertex
+        // itself: the segment crosses zero torque and, when the unloading
+        // points were dropped because the reversal was a hair above zero
+        // torque, runs straight to the reloading target and may cross the
+        // bound before it.)
         let mut i = if (self.zero as usize) < n {
-            self.zero as usize
+            (self.zero as usize).saturating_sub(1)
         } else {
             n - 1
         };
@@ -285,14 +316,50 @@ mod tests {
     fn contact_is_exact() {
         let bound = hysteretic();
         let mut b = Branch::starting(Kind::Rule, 1.0, [-1.0, 0.0]);
-        b.push_rising([0.0, 2.0]);
+        b.push_rising([0.0, 2.0], 5.0);
         b.finish(&bound);
         assert!((b.contact - 5.0 / 3.0).abs() < 1e-12, "{}", b.contact);
         // A flat ray at 4.9, below every part of the bound, never meets it.
         let mut flat = Branch::starting(Kind::Rule, 1.0, [-1.0, 0.0]);
-        flat.push_rising([0.0, 4.9]);
-        flat.push_rising([9.0, 4.9]);
+        flat.push_rising([0.0, 4.9], 5.0);
+        flat.push_rising([9.0, 4.9], 5.0);
         flat.finish(&bound);
         assert_eq!(flat.contact, f64::MAX);
+        // A rule branch closed with `finish_rising` rises past such a
+        // vertex with the given slope (G10): 4.9 + 5 (x - 9) = 5.5 at 9.12.
+        flat.finish_rising(&bound, 5.0);
+        assert!((flat.contact - 9.12).abs() < 1e-12, "{}", flat.contact);
+    }
+
+    /// A branch from just below zero torque straight to a point far above
+    /// the bound (the unloading points were dropped): the contact lies on
+    /// the first segment, before the zero-torque vertex (the search used to
+    /// start at that vertex and found 4.0, above the bound).
+    #[test]
+    fn contact_on_the_segment_that_crosses_zero() {
+        let bound = hysteretic();
+        let mut b = Branch::starting(Kind::Rule, 1.0, [0.0, -1e-9]);
+        b.push_rising([4.0, 20.0], 5.0);
+        b.finish(&bound);
+        assert_eq!(b.zero, 1);
+        // The line y = 5 x - 1e-9 (to 3e-10) meets the bound
+        // 5 + 0.5 (x - 1) at x = (4.5 + 1e-9) / 4.5.
+        let want = (4.5 + 1e-9) / 4.5;
+        assert!(b.contact < 1.5, "{}", b.contact);
+        assert!((b.contact - want).abs() < 1e-9, "{}", b.contact);
+    }
+
+    /// Reloading points are no stiffer than the cap (G10): a point at or
+    /// behind the previous twist is moved along its torque level, not
+    /// dropped; one that adds nothing (behind, at the previous torque) is.
+    #[test]
+    fn reloading_points_are_projected() {
+        let mut b = Branch::starting(Kind::Rule, 1.0, [-1.0, 0.0]);
+        b.push_rising([2.0, 0.0], 10.0);
+        b.push_rising([1.5, 20.0], 10.0);
+        assert_eq!(b.n, 3);
+        assert_eq!(b.last(), [4.0, 20.0]);
+        b.push_rising([3.0, 10.0], 10.0);
+        assert_eq!(b.n, 3);
     }
 }

@@ -65,7 +65,7 @@ pub mod selftest;
 pub use backbone::{Backbone, BackboneError, BackboneRule, Direction};
 pub use branch::{Branch, Kind};
 pub use params::{PhmError, PhmParams};
-pub use rules::{CoefficientSpec, Coefficients, Level, SPECS};
+pub use rules::{CoefficientSpec, Coefficients, Level, MAX_CYCLES, SPECS};
 
 use crate::element::{Element, Response, StepError};
 use crate::scalar::Scalar;
@@ -409,10 +409,15 @@ impl<S: Scalar, const N: usize, const M: usize> Phm<S, N, M> {
             return;
         }
     }
-}
 
-impl<S: Scalar, const N: usize, const M: usize> Element<S> for Phm<S, N, M> {
-    fn set_trial(&mut self, theta: S) -> Result<Response<S>, StepError> {
+    /// The trial at `theta` from the committed state. On success the trial
+    /// state and its memory changes are stored; on failure only the slot
+    /// the committed state does not use may have been written (see
+    /// [`Element::set_trial`] for how the pending trial is then restored).
+    /// Inlined: it is the step; the second caller is the cold
+    /// [`restore_pending`](Self::restore_pending).
+    #[inline(always)]
+    fn try_trial(&mut self, theta: S) -> Result<Response<S>, StepError> {
         let mut st = self.committed;
         if !theta.is_finite() {
             return Err(StepError::NonFiniteInput);
@@ -442,6 +447,37 @@ impl<S: Scalar, const N: usize, const M: usize> Element<S> for Phm<S, N, M> {
             force: st.torque,
             tangent: st.tangent,
         })
+    }
+
+    /// After a failed trial: if the pending trial's branch and rule memory
+    /// sit in the slot the failed trial may have written, compute the
+    /// pending trial again (it succeeded before from the same committed
+    /// state, and gives the same slot, state and memory changes).
+    #[cold]
+    #[inline(never)]
+    fn restore_pending(&mut self) {
+        if self.trial.slot != self.committed.slot {
+            let _ = self.try_trial(self.trial.twist);
+        }
+    }
+}
+
+impl<S: Scalar, const N: usize, const M: usize> Element<S> for Phm<S, N, M> {
+    /// A trial that fails changes nothing (the [`Element`] contract): the
+    /// committed state and the last successful trial stay as they were, so
+    /// that [`commit`](Element::commit) after a failed trial commits the
+    /// last successful one. A trial writes the slot the committed state does
+    /// not use, which may hold the pending trial's branch and rule memory; if
+    /// it fails after writing it, the pending trial is computed again (it
+    /// succeeded before and depends only on the committed state, so it gives
+    /// the same slot, state and memory changes). Only failing steps pay for
+    /// this.
+    fn set_trial(&mut self, theta: S) -> Result<Response<S>, StepError> {
+        let r = self.try_trial(theta);
+        if r.is_err() {
+            self.restore_pending();
+        }
+        r
     }
 
     fn commit(&mut self) {

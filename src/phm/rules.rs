@@ -26,6 +26,13 @@
 //! `theta_m/theta_y`; the thesis' numbers only make sense with the latter
 //! (with `mu_c` of 10 or more, 2a gives `theta_ur2 > theta_m`), so `mu_y` is
 //! used (gap G1 in `docs/phm.md`).
+//!
+//! Past the fits' range (eq. 5a: `theta_cr >= theta_m` from n = 13 at
+//! `mu_y = 1.6`; eq. 5b: `T_p <= 0`; eq. 6 below the pinched line) the
+//! reloading still rises to the primary curve: `theta_cr` is held where a
+//! segment of slope `k_T1` still reaches `(theta_m, T'_m)`, no reloading
+//! segment is stiffer than `k_T1`, and a ray that would not rise rises with
+//! `k_T1` (gap G10).
 
 use super::backbone::{Backbone, Direction};
 use super::branch::{Branch, Kind};
@@ -166,6 +173,14 @@ impl<S: Scalar> Default for Coefficients<S> {
     }
 }
 
+/// The largest value of the cycle counter n (eqs 5a, 5b, 6): 32767, the
+/// largest integer Q15.16 ([`Fixed`](crate::Fixed)) represents. The counter
+/// stops there, in every arithmetic, so that `n` reaches eqs 5-6 exactly
+/// (past it `S::from_i32(n)` saturated in fixed point and the response
+/// jumped) and `f64`, `f32` and fixed point count alike (gap G4 in
+/// `docs/phm.md`).
+pub const MAX_CYCLES: u16 = 32767;
+
 /// What the rules remember about one direction: the deformation level
 /// `theta_m` of its last counted unloading, the torque `T_m` there, the cycle
 /// counter n and whether the direction has cracked.
@@ -176,7 +191,8 @@ pub struct Level<S> {
     pub twist: S,
     /// `T_m` (magnitude) at the last counted unloading.
     pub torque: S,
-    /// The cycle counter n of eqs 5 and 6 (0: no unloading counted yet).
+    /// The cycle counter n of eqs 5 and 6 (0: no unloading counted yet; at
+    /// most [`MAX_CYCLES`]).
     pub cycles: u16,
     /// The element has been on this direction's primary curve past cracking
     /// (or at its cracking torque).
@@ -193,6 +209,8 @@ impl<S: Scalar> Level<S> {
     /// direction has cracked (rule 1 of §5.2.2 governs), nor from a twist
     /// below cracking (reached only on the torque cap below cracking, gap
     /// G6), so that `theta_m > theta_c` always holds where eqs 4-6 use it.
+    /// n stops at [`MAX_CYCLES`]: a further unloading within the band still
+    /// updates `theta_m` and `T_m`.
     pub(crate) fn count_unloading(&mut self, x: S, t: S, theta_c: S, band: S) {
         if !(self.cracked && x > theta_c) {
             return;
@@ -207,7 +225,7 @@ impl<S: Scalar> Level<S> {
                 cracked: true,
             };
         } else if !(x < lo) {
-            self.cycles = self.cycles.saturating_add(1);
+            self.cycles = self.cycles.saturating_add(1).min(MAX_CYCLES);
             self.twist = self.twist.max(x);
             self.torque = t;
         }
@@ -271,19 +289,22 @@ pub(crate) fn unloading_branch<S: Scalar, const N: usize>(
     let [x0, y0] = b.last();
     let [xc, tc] = other.cracking();
     let theta_y = other.yielding()[0];
+    // Reloading segments are no stiffer than k_T1 (gap G10).
+    let k1 = other.k1();
     if level.cycles == 0 {
         // Loading rule 2: towards the cracking point of the other direction.
-        b.push_rising([xc, tc]);
+        b.push_rising([xc, tc], k1);
     } else if level.twist < theta_y {
         // Loading rule 3: a straight line of slope k_Tr1 (eq. 4).
-        let k = other.k1() * v[idx::EQ4_A] * (level.twist / xc).powf(v[idx::EQ4_B]);
-        b.push_rising([x0 + xc, y0 + k * xc]);
+        let k = k1 * v[idx::EQ4_A] * (level.twist / xc).powf(v[idx::EQ4_B]);
+        b.push_rising([x0 + xc, y0 + k * xc], k1);
     } else {
         // Loading rules 4-5: the pinched line through (theta_m, T_p) up to
         // theta_cr (eq. 5), then towards (theta_m, T'_m) (eq. 6).
         let (xm, tm) = (level.twist, level.torque);
         let mu = xm / theta_y;
-        let n = S::from_i32(level.cycles as i32);
+        // n <= MAX_CYCLES, an integer every arithmetic represents.
+        let n = S::from_i32(level.cycles.min(MAX_CYCLES) as i32);
         let tp = tm
             * ((v[idx::EQ5B_A] * n + v[idx::EQ5B_B])
                 * mu.powf(v[idx::EQ5B_C] * n + v[idx::EQ5B_D]))
@@ -292,11 +313,29 @@ pub(crate) fn unloading_branch<S: Scalar, const N: usize>(
             xm * ((v[idx::EQ5A_A] * n + v[idx::EQ5A_B]) * mu + v[idx::EQ5A_C] * n + v[idx::EQ5A_D]);
         let tm2 = tm * (v[idx::EQ6_A] * mu + v[idx::EQ6_B] * n + v[idx::EQ6_C]).min(S::ONE);
         if xm > x0 {
-            b.push_rising([xcr, y0 + (tp - y0) * ((xcr - x0) / (xm - x0))]);
+            // Gap G10: the cracks close no later than theta_m, and early
+            // enough for the segment to (theta_m, T'_m) to be no stiffer
+            // than k_T1. Eq. 5a leaves this range for large n (theta_cr >=
+            // theta_m from n = 13 at mu_y = 1.6, with eq. 5b's T_p <= 0):
+            // the pinched line then ends where k_T1 still reaches T'_m at
+            // theta_m. `s` is the pinched line's slope as followed (a
+            // falling line is held at the torque reached, G5).
+            let s = ((tp - y0) / (xm - x0)).max(S::ZERO);
+            let latest = if k1 > s {
+                (k1 * xm - s * x0 - (tm2 - y0)) / (k1 - s)
+            } else {
+                xm
+            };
+            let xcr = xcr.min(latest).min(xm);
+            if xcr > x0 {
+                b.push_rising([xcr, y0 + (tp - y0) * ((xcr - x0) / (xm - x0))], k1);
+            }
         }
-        b.push_rising([xm, tm2]);
+        b.push_rising([xm, tm2], k1);
     }
-    b.finish(other);
+    // Rule 6 presumes that the reloading meets the primary curve: the ray
+    // past the last point rises (with k_T1 where eqs 4-6 give no rise, G10).
+    b.finish_rising(other, k1);
     b
 }
 
@@ -352,6 +391,12 @@ mod tests {
         assert_eq!((l.twist, l.torque, l.cycles), (4.1, 5.7, 3));
         l.count_unloading(4.4, 6.1, 1.0, band);
         assert_eq!((l.twist, l.torque, l.cycles), (4.4, 6.1, 1));
+        // n stops at MAX_CYCLES; theta_m and T_m are still updated.
+        l.cycles = MAX_CYCLES - 1;
+        l.count_unloading(4.4, 6.0, 1.0, band);
+        assert_eq!(l.cycles, MAX_CYCLES);
+        l.count_unloading(4.3, 5.9, 1.0, band);
+        assert_eq!((l.twist, l.torque, l.cycles), (4.4, 5.9, MAX_CYCLES));
         let mut uncracked = Level::<f64>::default();
         uncracked.count_unloading(0.5, 1.0, 1.0, band);
         assert_eq!(uncracked.cycles, 0);

@@ -357,3 +357,288 @@ fn low_precision_tracks_f64_on_the_reference_history() {
     assert!(e32 < 1e-5, "f32: {e32}");
     assert!(efx < 5e-4, "fixed: {efx}");
 }
+
+/// Gap G10 (eqs 5a, 5b, 6 past their fitted range): after 13 equal cycles
+/// at +-8 on the test curve (mu_y = 1.6) eq. 5a gives theta_cr/theta_m =
+/// 1.0035 > 1 and eq. 5b a negative T_p. The pinched line ends where k_T1
+/// still reaches (theta_m, T'_m): every cycle reaches T'_m at +-8 (eq. 6,
+/// capped at 1 from n = 5 on: 15.318), and the reloading rises to the
+/// primary curve: at +-30 the element is on it (residual plateau 16, G7).
+fn many_equal_cycles_still_reach_the_primary_curve<S: Scalar>(cycles: usize) {
+    let mut el: Phm<S, 4, 16> = Phm::new(params());
+    let tol = selftest::tol::<S>() * 10.0;
+    for _ in 0..cycles {
+        drive(&mut el, S::from_i32(8), 40);
+        let t = el.response().force.to_f64();
+        drive(&mut el, S::from_i32(-8), 40);
+        assert!(t > 15.3 && el.response().force.to_f64() < -15.3, "{t}");
+    }
+    assert_eq!(el.levels()[0].cycles as usize, cycles);
+    let t = el.response().force.to_f64();
+    assert!(
+        (t + 15.318048421021198).abs() < tol,
+        "{cycles} cycles: T(-8) = {t}"
+    );
+    drive(&mut el, S::from_i32(30), 40);
+    let t = el.response().force.to_f64();
+    assert!((t - 16.0).abs() < tol, "{cycles} cycles: T(+30) = {t}");
+    assert_eq!(el.committed().kind(), Kind::Envelope);
+    drive(&mut el, S::from_i32(-30), 40);
+    let t = el.response().force.to_f64();
+    assert!((t + 16.0).abs() < tol, "{cycles} cycles: T(-30) = {t}");
+    assert_eq!(el.committed().kind(), Kind::Envelope);
+}
+
+#[test]
+fn thirteen_and_more_equal_cycles_reload_to_the_primary_curve() {
+    for cycles in [12, 13, 14, 20, 60] {
+        many_equal_cycles_still_reach_the_primary_curve::<f64>(cycles);
+        many_equal_cycles_still_reach_the_primary_curve::<f32>(cycles);
+        many_equal_cycles_still_reach_the_primary_curve::<Fixed>(cycles);
+    }
+}
+
+/// The reviewer's reproduction (f64, thesis coefficients): 13 cycles
+/// 0 -> +8 -> -8 in 40 steps a leg, then +30: T was 0 (a flat ray at zero
+/// torque that never met the primary curve).
+#[test]
+fn thirteen_cycles_keep_strength_at_plus_30() {
+    let pts = [[1.0, 10.0], [5.0, 20.0], [10.0, 20.0], [15.0, 16.0]];
+    let p = PhmParams::<f64>::symmetric(&pts, Coefficients::thesis()).unwrap();
+    let mut el: Phm<f64> = Phm::new(p);
+    for _ in 0..13 {
+        drive(&mut el, 8.0, 40);
+        drive(&mut el, -8.0, 40);
+    }
+    drive(&mut el, 30.0, 40);
+    assert!(
+        (el.response().force - 16.0).abs() < 1e-9,
+        "{:?}",
+        el.response()
+    );
+    drive(&mut el, -30.0, 40);
+    assert!(
+        (el.response().force + 16.0).abs() < 1e-9,
+        "{:?}",
+        el.response()
+    );
+}
+
+/// Gap G10, the degenerate target: when eq. 6 puts T'_m at or below the
+/// pinched line (here eq6_c = -1: T'_m < 0), the ray past the last vertex
+/// rises with k_T1 and meets the primary curve.
+#[test]
+fn a_target_below_the_pinched_line_still_rises() {
+    let c = Coefficients::<f64>::from_named(|n| (n == "eq6_c").then_some(-1.0)).unwrap();
+    let p =
+        PhmParams::<f64, 4>::symmetric(&[[1.0, 10.0], [5.0, 20.0], [10.0, 20.0], [15.0, 16.0]], c)
+            .unwrap();
+    let mut el: Phm<f64, 4, 16> = Phm::new(p);
+    drive(&mut el, 8.0, 40);
+    drive(&mut el, -8.0, 40);
+    drive(&mut el, 30.0, 40);
+    assert!(
+        (el.response().force - 16.0).abs() < 1e-9,
+        "{:?}",
+        el.response()
+    );
+    let k = el.branch().v[el.branch().n as usize - 1][2];
+    assert!(k > 0.0, "ray slope {k}");
+}
+
+/// A reversal one LSB (fixed point) past zero torque: both unloading points
+/// are dropped and the branch runs straight from the reversal to the
+/// reloading target. Its first segment crosses the primary curve; the
+/// contact search must not skip it (it started at the zero-torque vertex).
+#[test]
+fn reversal_just_past_zero_torque_stays_under_the_bound_fixed() {
+    let fx = Fixed::from_f64;
+    let pos = [
+        [2.15625, 14.765625],
+        [3.1875, 15.328125],
+        [5.015625, 11.40625],
+        [6.8125, 21.6875],
+        [8.28125, 17.96875],
+    ];
+    let neg = [
+        [1.515625, 14.84375],
+        [2.703125, 19.109375],
+        [3.453125, 19.328125],
+        [4.9375, 10.703125],
+        [5.984375, 17.359375],
+    ];
+    let c = |p: &[[f64; 2]]| p.iter().map(|q| [fx(q[0]), fx(q[1])]).collect::<Vec<_>>();
+    let p = PhmParams::<Fixed>::new(&c(&pos), &c(&neg), Coefficients::thesis()).unwrap();
+    let mut el: Phm<Fixed> = Phm::new(p.clone());
+    for x in [6.545684351585642, 4.358608807731633, 1.915283203125] {
+        el.set_trial(fx(x)).unwrap();
+        el.commit();
+    }
+    assert!(el.response().force.to_f64().abs() < 1e-4);
+    for x in [3.0, 5.25, 6.0, 7.0, 9.0] {
+        let t = el.set_trial(fx(x)).unwrap().force.to_f64();
+        let (b, _) = p.primary(Direction::Positive).bound(fx(x));
+        assert!(t <= b.to_f64() + 1e-3, "T({x}) = {t} above the bound {b:?}");
+    }
+}
+
+/// The same in f64, with finite (scaled) coefficients accepted by the checks.
+#[test]
+fn reversal_just_past_zero_torque_stays_under_the_bound_f64() {
+    let pos = [
+        [0.328125, 1.171875],
+        [2.53125, 2.703125],
+        [4.84375, 5.265625],
+        [6.765625, 1.046875],
+        [9.234375, 2.78125],
+    ];
+    let v = [
+        -0.004414115669387461,
+        0.8348335810777635,
+        -0.0003680391037591892,
+        1.9878019421668676,
+        -0.0007181538359865977,
+        0.7722728386483028,
+        -0.0004714473660207286,
+        1.3813548858500153,
+        0.012611442316000974,
+        1.3785512122947128,
+        -0.024469992447316926,
+        0.1564111189824816,
+        -0.002495438220498174,
+        0.17318687010771183,
+        0.06499369152169095,
+        0.10032969057301572,
+        0.5890023109437291,
+        -0.1962310452367112,
+        -0.008966080157015525,
+        0.05118670248755696,
+        0.010180068791036414,
+        0.0028058235864012113,
+        -0.039098905926562226,
+        1.5616196697044906,
+        0.15962440308201079,
+        -0.6269843251621194,
+        -0.0506107774170775,
+        0.026234419951411205,
+        1.4527355497029038,
+        0.08122337481640418,
+    ];
+    let p = PhmParams::<f64>::from_named(&pos, &pos, |n| {
+        SPECS.iter().position(|s| s.name == n).map(|i| v[i])
+    })
+    .unwrap();
+    let mut el: Phm<f64> = Phm::new(p.clone());
+    for x in [
+        11.206106165734104,
+        3.057322178491498,
+        -9.668287056084173,
+        -4.511314573832678,
+        -3.370148854743941,
+    ] {
+        el.set_trial(x).unwrap();
+        el.commit();
+    }
+    for x in [-5.0, -7.280966881057072, -9.0, -12.0] {
+        let t = el.set_trial(x).unwrap().force;
+        let (b, _) = p.primary(Direction::Negative).bound(-x);
+        assert!(-t <= b + 1e-9, "T({x}) = {t}, bound -{b}");
+    }
+}
+
+/// The Element contract: a trial that fails leaves the element as it was,
+/// including the pending successful trial, which commit() then commits.
+/// Trial A (it reaches the primary curve and marks the direction cracked in
+/// the slot the committed state does not use) succeeds; trial B (a
+/// reversal: it writes that slot again) saturates fixed point (eq. 4's
+/// exponent 29, far outside the fits) and fails. B used to leave its branch
+/// and rule memory in A's slot, so that commit() committed a mix; now
+/// committing gives the state of a twin that never tried B.
+#[test]
+fn a_failed_trial_keeps_the_pending_trial() {
+    let fx = Fixed::from_f64;
+    let pts = [[300.0, 10.0], [900.0, 15.0], [1500.0, 18.0], [2100.0, 12.0]]
+        .map(|q| [fx(q[0]), fx(q[1])]);
+    let named = |n: &str| match n {
+        "eq1a_b" => Some(fx(-28.0)),
+        "eq1c_a" => Some(fx(15.0)),
+        "eq3a_b" => Some(fx(-7.0)),
+        "eq3b_a" => Some(fx(37.0)),
+        "eq4_b" => Some(fx(29.0)),
+        "eq6_a" => Some(fx(43.0)),
+        _ => None,
+    };
+    let c = Coefficients::<Fixed>::from_named(named).unwrap();
+    let mut el: Phm<Fixed, 4, 4> = Phm::new(PhmParams::symmetric(&pts, c).unwrap());
+    for x in [
+        1307.96875,
+        -721.390625,
+        1051.546875,
+        -8.96875,
+        854.796875,
+        -2166.28125,
+        -2143.75,
+    ] {
+        el.set_trial(fx(x)).unwrap();
+        el.commit();
+    }
+    let mut twin = el.clone();
+    let a = el.set_trial(fx(2438.875)).unwrap();
+    let (trial_a, branch_a, levels_a) = (*el.trial(), *el.branch(), *el.levels());
+    assert_ne!(trial_a.slot, el.committed().slot, "trial A writes the slot");
+    let b = el.set_trial(fx(-3000.0));
+    assert_eq!(b, Err(StepError::NonFiniteState));
+    assert_eq!(*el.trial(), trial_a);
+    assert_eq!(*el.branch(), branch_a);
+    assert_eq!(*el.levels(), levels_a);
+    assert_eq!(el.response(), a);
+    el.commit();
+    twin.set_trial(fx(2438.875)).unwrap();
+    twin.commit();
+    assert_eq!(el.committed(), twin.committed());
+    assert_eq!(el.branch(), twin.branch());
+    assert_eq!(el.levels(), twin.levels());
+    assert_eq!(el.memory_depth(), twin.memory_depth());
+    // And the two go on alike.
+    for x in [2000.0, 500.0, 2500.0, -1000.0] {
+        assert_eq!(el.set_trial(fx(x)), twin.set_trial(fx(x)));
+        el.commit();
+        twin.commit();
+        assert_eq!(el.committed(), twin.committed());
+    }
+}
+
+/// The cycle counter stops at `rules::MAX_CYCLES` (32767, the largest
+/// integer of Q15.16): with coefficients that do not depend on n the
+/// response of a fixed-point element does not change past it (it jumped at
+/// n = 32768, where `S::from_i32(n)` saturated).
+#[test]
+fn cycle_count_past_fixed_point_range_changes_nothing() {
+    let fx = Fixed::from_f64;
+    let pts = [
+        [fx(1.0), fx(10.0)],
+        [fx(5.0), fx(20.0)],
+        [fx(10.0), fx(20.0)],
+        [fx(15.0), fx(16.0)],
+    ];
+    let c = Coefficients::<Fixed>::from_named(|n| match n {
+        "eq5a_a" | "eq5a_c" | "eq5b_a" | "eq5b_c" | "eq6_b" => Some(Fixed::ZERO),
+        _ => None,
+    })
+    .unwrap();
+    let mut el: Phm<Fixed> = Phm::new(PhmParams::symmetric(&pts, c).unwrap());
+    let mut last = Vec::new();
+    for cyc in 0..32_770 {
+        let mut row = Vec::new();
+        for x in [8.0, 3.0, 6.0, -8.0, -3.0, -6.0] {
+            row.push(el.set_trial(fx(x)).unwrap().force);
+            el.commit();
+        }
+        if cyc > 32_000 {
+            assert_eq!(row, last, "cycle {cyc} (n = {})", el.levels()[0].cycles);
+        }
+        last = row;
+    }
+    assert_eq!(el.levels()[0].cycles, rules::MAX_CYCLES);
+    assert_eq!(el.levels()[1].cycles, rules::MAX_CYCLES);
+}
