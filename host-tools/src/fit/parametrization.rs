@@ -11,7 +11,7 @@
 //! benchmark in m and N. Results are converted back before they are reported.
 
 use super::experiment::{Drive, Experiment};
-use crate::model::{Extras, ModelSpec};
+use crate::model::{EffectRef, Extras, ModelSpec};
 use anyhow::{bail, Result};
 use hysteresis::bwbn::{BwbnParams, ParamError, ParamSpec, Unit};
 use hysteresis::Scalar;
@@ -214,7 +214,28 @@ impl Parametrization {
             if !v.is_finite() {
                 bail!("cannot fix `{name}` to {v}: not a finite number");
             }
-            fixed_map.insert(s.name, *v);
+            if let Some(before) = fixed_map.insert(s.name, *v) {
+                bail!("`{name}` is fixed twice (to {before} and to {v}): fix it once");
+            }
+        }
+        // A fixed value the model refuses on its own (alpha = 5, k0 = 0) is named here, not
+        // found later as a start that cannot be simulated: the set is built with the fixed
+        // values and every other parameter at the value that switches its effect off.
+        if let Err(e) = spec.build(|name| {
+            fixed_map.get(name).copied().or_else(|| {
+                all.iter()
+                    .find(|s| s.name == name)
+                    .map(|s| f64::from(s.off))
+            })
+        }) {
+            if let Some(v) = fixed_map.get(e.field) {
+                bail!("cannot fix `{}` to {v}: {e}", e.field);
+            }
+        }
+        if let Some(&xi) = fixed_map.get("xi") {
+            if xi < 0.0 {
+                bail!("cannot fix `xi` to {xi}: the damping ratio must not be negative");
+            }
         }
         let free = all
             .iter()
@@ -238,7 +259,15 @@ impl Parametrization {
             Drive::Force { mass, .. } => mass,
             Drive::Displacement => 1.0,
         };
-        let energy_limit = (work > 0.0).then_some(2.0 * work / per_mass);
+        // Only where the energy drives the model: plain Bouc-Wen (or with asymmetry) has no
+        // limit, so that a start that dissipates more than the record cannot fail for it.
+        let energy_driven = spec.effects().iter().any(|e| {
+            !matches!(
+                e,
+                EffectRef::Builtin(hysteresis::bwbn::EffectKind::Asymmetry)
+            )
+        });
+        let energy_limit = (energy_driven && work > 0.0).then_some(2.0 * work / per_mass);
         Ok(Parametrization {
             spec,
             free,
