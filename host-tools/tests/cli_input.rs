@@ -141,3 +141,36 @@ fn a_short_force_driven_record_fits_plain_bouc_wen() {
     let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     assert!(v["nrmse"].as_f64().unwrap() < 1e-4, "{v}");
 }
+
+/// A record with nothing to fit (a force that is zero throughout, a displacement that never
+/// moves) or forces too large to square is refused, where a fit "succeeded" with `k0` at
+/// 1e-308 or an NRMSE of NaN.
+#[test]
+fn records_without_anything_to_fit_are_refused() {
+    let rows = |f: &dyn Fn(usize) -> (f64, f64)| {
+        let mut t = String::from("disp_mm,force_kN\n");
+        for i in 0..20 {
+            let (u, p) = f(i);
+            t += &format!("{u},{p}\n");
+        }
+        t
+    };
+    let zero_force = write("zero-force.csv", &rows(&|i| ((i % 5) as f64, 0.0)));
+    let e = cli::err(hyst(&["fit", &zero_force, "--method", "lsq"]));
+    assert!(
+        e.contains("zero-force.csv: expected the force to vary, found 0 kN in every sample"),
+        "{e}"
+    );
+    let still = write("still.csv", &rows(&|i| (0.0, (i % 3) as f64)));
+    let e = cli::err(hyst(&["diagnose", &still]));
+    assert!(
+        e.contains("expected the displacement to vary, found 0 mm in every sample"),
+        "{e}"
+    );
+    let huge = write(
+        "huge.csv",
+        &rows(&|i| ((i % 5) as f64, 1e155 * (i % 5) as f64)),
+    );
+    let e = cli::err(hyst(&["fit", &huge, "--method", "lsq"]));
+    assert!(e.contains("found values up to 4e155 kN"), "{e}");
+}

@@ -32,10 +32,35 @@ pub struct Problem {
     pub control: Control<f64>,
 }
 
+/// A record a model can be fitted to: displacement and force both vary (a fit to a force that is
+/// zero throughout "succeeds" with `k0` at the bottom of its range, and its NRMSE divides by
+/// zero), and their squares stay finite (the NRMSE of forces near 1e155 kN was NaN).
+fn check_signals(exp: &Experiment) -> Result<()> {
+    for (name, unit, values) in [
+        ("displacement", "mm", exp.displacement()),
+        ("force", "kN", exp.force()),
+    ] {
+        if values.iter().all(|v| *v == values[0]) {
+            anyhow::bail!(
+                "expected the {name} to vary, found {} {unit} in every sample: nothing to fit",
+                values[0]
+            );
+        }
+        if !values.iter().map(|v| v * v).sum::<f64>().is_finite() {
+            let largest = values.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+            anyhow::bail!(
+                "expected {name}s whose squares sum to a finite number, found values up to {largest:e} {unit}: give the record in larger units"
+            );
+        }
+    }
+    Ok(())
+}
+
 impl Problem {
     /// The problem of fitting `spec` to `exp` with `fixed` parameters
     /// (physical values).
     pub fn new(spec: ModelSpec, exp: Experiment, fixed: &[(String, f64)]) -> Result<Self> {
+        check_signals(&exp)?;
         let par = Parametrization::new(spec, &exp, fixed)?;
         if exp.len() <= par.dim() {
             anyhow::bail!(
