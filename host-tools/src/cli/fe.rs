@@ -19,7 +19,7 @@ use std::sync::Arc;
 pub struct FeArgs {
     /// Specimen file (TOML), e.g. `specimens/tp-91.toml`.
     pub specimen: PathBuf,
-    /// Directory for `torque_twist.csv`, `rebar_strains.csv`,
+    /// Directory for `torque_twist.csv`, `torque_twist.svg`, `rebar_strains.csv`,
     /// `section_shear.csv`, `section_shear.svg` and VTK files.
     #[arg(long)]
     pub out: Option<PathBuf>,
