@@ -174,3 +174,35 @@ fn records_without_anything_to_fit_are_refused() {
     let e = cli::err(hyst(&["fit", &huge, "--method", "lsq"]));
     assert!(e.contains("found values up to 4e155 kN"), "{e}");
 }
+
+/// A force-driven fit file carries the test's mass: `sensitivity` and `diagnose --params` read
+/// it as `simulate` does (they refused the file without `--mass`, blaming `--forcing`).
+#[test]
+fn force_driven_fit_files_carry_their_mass_to_every_verb() {
+    let full = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../benches/baselines/bw_synthetic.csv"
+    ))
+    .unwrap();
+    let short: String = full.lines().take(600).map(|l| format!("{l}\n")).collect();
+    let data = write("bw-mass.csv", &short);
+    let fit = cli::tmp("bw-mass-fit.json");
+    let fit = fit.to_str().unwrap();
+    ok(hyst(&[
+        "fit", &data, "--mass", "500", "--fix", "k0=6", "--method", "lsq", "--out", fit,
+    ]));
+    let out = ok(hyst(&["sensitivity", &data, "--params", fit, "--json"]));
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert!(v.to_string().contains("\"xi\""), "{v}");
+    let out = ok(hyst(&[
+        "diagnose",
+        &data,
+        "--params",
+        fit,
+        "--candidates",
+        "asymmetry",
+        "--json",
+    ]));
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert!(v["nrmse"].as_f64().unwrap() < 1e-4, "{v}");
+}

@@ -34,7 +34,7 @@ pub struct Common {
     /// not in the model).
     #[arg(long, value_delimiter = ',')]
     pub candidates: Vec<String>,
-    /// Mass in kg, for force-driven records.
+    /// Mass in kg, for force-driven records (default: the `m` of the parameter file, if any).
     #[arg(long)]
     pub mass: Option<f64>,
     #[command(flatten)]
@@ -91,7 +91,11 @@ pub fn initial_fit(
 ) -> Result<(Problem, Outcome, Option<Vec<f64>>)> {
     let file = params.map(ParamFile::read).transpose()?;
     let forcing = common.forcing.or_file(file.as_ref())?;
-    let (exp, time) = load_timed(&common.data, &common.read, common.mass, forcing)?;
+    // A fit of the oscillator carries its mass (kg), as `simulate` reads it.
+    let mass = common
+        .mass
+        .or_else(|| file.as_ref().and_then(|f| f.values.get("m").copied()));
+    let (exp, time) = load_timed(&common.data, &common.read, mass, forcing)?;
     let problem = Problem::new(common.model, exp, &common.fix)
         .with_context(|| common.data.display().to_string())?;
     if problem.dim() == 0 {

@@ -24,7 +24,7 @@ pub struct SensitivityArgs {
     /// Model spec; defaults to the parameter file's.
     #[arg(long)]
     pub model: Option<ModelSpec>,
-    /// Mass in kg, for force-driven records.
+    /// Mass in kg, for force-driven records (default: the `m` of the parameter file, if any).
     #[arg(long)]
     pub mass: Option<f64>,
     #[command(flatten)]
@@ -47,7 +47,9 @@ pub fn run(args: SensitivityArgs) -> Result<()> {
     let file = ParamFile::read(&args.params)?;
     let spec = file.spec(args.model)?;
     let forcing = args.forcing.or_file(Some(&file))?;
-    let exp = load(&args.data, &args.read, args.mass, forcing)?;
+    // A fit of the oscillator carries its mass (kg), as `simulate` reads it.
+    let mass = args.mass.or_else(|| file.values.get("m").copied());
+    let exp = load(&args.data, &args.read, mass, forcing)?;
     let problem = Problem::new(spec, exp, &[]).with_context(|| args.data.display().to_string())?;
     file.build(spec, problem.par.dynamic)?;
     let values: BTreeMap<&str, f64> = file.values.iter().map(|(k, v)| (k.as_str(), *v)).collect();
