@@ -206,3 +206,88 @@ fn force_driven_fit_files_carry_their_mass_to_every_verb() {
     let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     assert!(v["nrmse"].as_f64().unwrap() < 1e-4, "{v}");
 }
+
+/// A PHM file (phm_cli.rs's asymmetric column).
+const PHM: &str = r#"{"model": "phm-torsion", "units": {"twist": "deg", "torque": "kN m"},
+ "primary": {"positive": [[0.2, 100.0], [1.2, 160.0], [4.2, 172.0], [7.5, 150.0]],
+             "negative": [[0.25, 110.0], [1.3, 158.0], [4.3, 166.0], [7.5, 140.0]]},
+ "coefficients": {"eq2b_b": 0.38, "eq3b_b": 0.12, "eq4_a": 0.65, "eq5b_b": 0.85, "eq6_c": 0.95}}"#;
+
+/// `export --history` drives the elements with the history's quantity: a twist history for
+/// Bouc-Wen elements, or millimetres for the PHM, is refused (degrees were read as mm), and the
+/// reader's notes are printed as by every other verb.
+#[test]
+fn export_histories_are_of_the_elements_quantity() {
+    let bw = write("export-bw.json", BW);
+    let phm = write("export-phm.json", PHM);
+    let twist = write("twist.csv", "twist (deg)\n0\n1\n3\n0\n-3\n0\n");
+    let mm = write("mm.csv", "displacement (mm)\n0\n1\n3\n0\n-3\n0\n");
+    let plain = write("plain.csv", "disp\n0\n1\n3\n0\n-3\n0\n");
+    let table = cli::tmp("export.bin");
+    let table = table.to_str().unwrap();
+    let export = |params: &str, history: &str| {
+        hyst(&[
+            "export",
+            params,
+            "--format",
+            "bin",
+            "--scalar",
+            "f32",
+            "--history",
+            history,
+            "--out",
+            table,
+        ])
+    };
+    let e = cli::err(export(&bw, &twist));
+    assert!(
+        e.contains("twist.csv: a twist history, but the table holds Bouc-Wen elements"),
+        "{e}"
+    );
+    let e = cli::err(export(&phm, &mm));
+    assert!(
+        e.contains("mm.csv: a displacement history, but the table holds PHM elements"),
+        "{e}"
+    );
+    let done = ok(export(&bw, &plain));
+    let notes = cli::stderr(&done);
+    assert!(
+        notes.contains("note: column 'disp' states no unit: assumed mm"),
+        "{notes}"
+    );
+}
+
+/// A force-driven `simulate` prints the reader's notes, and blames a parameter the model refuses
+/// on the parameter file, not on the record.
+#[test]
+fn force_driven_simulate_names_the_right_file() {
+    let full = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../benches/baselines/bw_synthetic.csv"
+    ))
+    .unwrap();
+    let short: String = full.lines().take(200).map(|l| format!("{l}\n")).collect();
+    let data = write("bw-sim.csv", &short);
+    let with_xi = |xi: f64| {
+        format!(
+            r#"{{"model": "bw", "k0": 6, "alpha": 0.2, "n": 1.2, "beta": 2, "gamma": -1, "m": 500, "xi": {xi}}}"#
+        )
+    };
+    let bad = write("negative-xi.json", &with_xi(-0.5));
+    let e = cli::err(hyst(&["simulate", &data, "--params", &bad]));
+    assert!(
+        e.contains("negative-xi.json: invalid parameters: xi must not be negative"),
+        "{e}"
+    );
+    let good = write("xi.json", &with_xi(0.05));
+    let done = ok(hyst(&[
+        "simulate",
+        &data,
+        "--params",
+        &good,
+        "--skip-rows",
+        "1",
+    ]));
+    let notes = cli::stderr(&done);
+    assert!(notes.contains("skipped as asked"), "{notes}");
+}

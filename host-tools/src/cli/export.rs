@@ -5,8 +5,8 @@
 
 use super::columns::ReadArgs;
 use crate::data::{self, Channel};
-use crate::export::{self, precision, Format};
-use anyhow::{anyhow, Context, Result};
+use crate::export::{self, precision, Elements, Format};
+use anyhow::{anyhow, bail, Context, Result};
 use clap::Args;
 use hysteresis::table::{crc32, ScalarKind, Table};
 use std::io::Write;
@@ -52,7 +52,7 @@ pub fn run(args: ExportArgs) -> Result<()> {
     for note in &src.notes {
         eprintln!("note: {note}");
     }
-    let history = read_history(&args)?;
+    let history = read_history(&args, &src.elements)?;
     let bytes = export::encode(&src, args.scalar)?;
     let header = *Table::parse(&bytes).map_err(|e| anyhow!("{e}"))?.header();
     let files: Vec<String> = args.fits.iter().map(|p| export::short(p)).collect();
@@ -95,11 +95,26 @@ pub fn run(args: ExportArgs) -> Result<()> {
 
 /// The `--history` displacements, read before anything is written so that a
 /// bad file leaves no table behind.
-fn read_history(args: &ExportArgs) -> Result<Option<Vec<f64>>> {
+/// Its quantity must be the elements': displacement for BWBN, twist for the PHM.
+fn read_history(args: &ExportArgs, elements: &Elements) -> Result<Option<Vec<f64>>> {
     let Some(path) = &args.history else {
         return Ok(None);
     };
     let record = data::read(path, &args.read.options().input(Channel::Displacement))?;
+    for n in record.notices() {
+        eprintln!("note: {n}");
+    }
+    match (elements, record.is_torsion()) {
+        (Elements::Bwbn(_), true) => bail!(
+            "{}: a twist history, but the table holds Bouc-Wen elements, which take displacement",
+            path.display()
+        ),
+        (Elements::Phm(_), false) => bail!(
+            "{}: a displacement history, but the table holds PHM elements, which take twist (a column such as `twist (deg)`)",
+            path.display()
+        ),
+        _ => {}
+    }
     let u = record
         .displacement()
         .ok_or_else(|| anyhow!("{}: no displacement column", path.display()))?;

@@ -8,6 +8,7 @@
 use super::columns::ReadArgs;
 use super::{ForcingArgs, ModelArg};
 use crate::data::{self, Channel};
+use crate::fit::experiment::SimError;
 use crate::model::Extras;
 use crate::model::{is_phm, ParamFile, PHM_MODEL};
 use crate::report::plots::{loop_overlay, Quantity, Trace};
@@ -187,6 +188,9 @@ fn forced(
     record: &data::Record,
 ) -> Result<()> {
     let src = args.history.display();
+    for n in record.notices() {
+        eprintln!("note: {n}");
+    }
     let mass = match (args.mass, file.values.get("m")) {
         (Some(m), _) | (None, Some(&m)) => m,
         (None, None) => bail!(
@@ -218,9 +222,13 @@ fn forced(
             between: args.forcing.or_file(Some(file))?.unwrap_or_default(),
         },
     };
+    // A rejected set is the parameter file's fault, a failed step the record's.
     let sim = exp
         .simulate(&params, &extras, xi, Control::default_for())
-        .map_err(|e| anyhow!("{src}: {e}"))?;
+        .map_err(|e| match e {
+            SimError::Params(_) => anyhow!("{}: {e}", file.path.display()),
+            SimError::Step(..) => anyhow!("{src}: {e}"),
+        })?;
     let time: Vec<f64> = (0..force.len()).map(|i| i as f64 * dt).collect();
     let mut out = super::output(args.out.as_deref())?;
     data::write_columns(
