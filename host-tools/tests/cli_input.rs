@@ -291,3 +291,47 @@ fn force_driven_simulate_names_the_right_file() {
     let notes = cli::stderr(&done);
     assert!(notes.contains("skipped as asked"), "{notes}");
 }
+
+/// `export --name` must be usable in the language it is written for: a keyword gave a file that
+/// does not compile (`pub static fn`, `uint8_t for[64]`).
+#[test]
+fn export_names_are_not_keywords() {
+    let bw = write("keyword-bw.json", BW);
+    let export =
+        |format: &str, name: &str| hyst(&["export", &bw, "--format", format, "--name", name]);
+    let e = cli::err(export("rust", "fn"));
+    assert!(e.contains(r#"--name "fn" is a keyword of Rust"#), "{e}");
+    let e = cli::err(export("c", "for"));
+    assert!(e.contains(r#"--name "for" is a keyword of C"#), "{e}");
+    // Each language's keywords only: `fn` names a C array, `for_table` either.
+    ok(export("c", "fn"));
+    ok(export("rust", "for_table"));
+}
+
+/// `diagnose --candidates` weighs each effect once, and only effects the model lacks.
+#[test]
+fn candidates_are_distinct_effects_to_add() {
+    let data = write("column-candidates.csv", &column_record());
+    let e = cli::err(hyst(&[
+        "diagnose",
+        &data,
+        "--candidates",
+        "pinching,pinching",
+    ]));
+    assert!(
+        e.contains("candidate effect `pinching` is given twice"),
+        "{e}"
+    );
+    let e = cli::err(hyst(&[
+        "diagnose",
+        &data,
+        "--model",
+        "bw+pinching",
+        "--candidates",
+        "pinching",
+    ]));
+    assert!(
+        e.contains("candidate effect `pinching` is already in the model bw+pinching"),
+        "{e}"
+    );
+}

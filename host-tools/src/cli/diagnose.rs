@@ -55,15 +55,23 @@ impl Common {
         let candidates = if self.candidates.is_empty() {
             None
         } else {
-            Some(
-                self.candidates
-                    .iter()
-                    .map(|n| {
-                        EffectRef::from_name(n.trim())
-                            .ok_or_else(|| anyhow!("unknown candidate effect `{n}`"))
-                    })
-                    .collect::<Result<Vec<_>>>()?,
-            )
+            let mut list: Vec<EffectRef> = Vec::new();
+            for n in &self.candidates {
+                let e = EffectRef::from_name(n.trim())
+                    .ok_or_else(|| anyhow!("unknown candidate effect `{n}`"))?;
+                if list.contains(&e) {
+                    bail!("candidate effect `{}` is given twice", e.name());
+                }
+                if self.model.contains(e) {
+                    bail!(
+                        "candidate effect `{}` is already in the model {}: a candidate is an effect to add",
+                        e.name(),
+                        self.model
+                    );
+                }
+                list.push(e);
+            }
+            Some(list)
         };
         Ok(WeighOptions {
             candidates,

@@ -32,11 +32,91 @@ fn is_identifier(name: &str) -> bool {
         && chars.all(|c| c.is_ascii_alphanumeric() || c == '_')
 }
 
+/// Rust's strict and reserved keywords (2024 edition), which cannot name a static.
+const RUST_KEYWORDS: &[&str] = &[
+    "_", "abstract", "as", "async", "await", "become", "box", "break", "const", "continue",
+    "crate", "do", "dyn", "else", "enum", "extern", "false", "final", "fn", "for", "gen", "if",
+    "impl", "in", "let", "loop", "macro", "match", "mod", "move", "mut", "override", "priv", "pub",
+    "ref", "return", "self", "Self", "static", "struct", "super", "trait", "true", "try", "type",
+    "typeof", "unsafe", "unsized", "use", "virtual", "where", "while", "yield",
+];
+
+/// C's keywords (C23, with C11's spellings), which cannot name an array.
+const C_KEYWORDS: &[&str] = &[
+    "alignas",
+    "alignof",
+    "auto",
+    "bool",
+    "break",
+    "case",
+    "char",
+    "const",
+    "constexpr",
+    "continue",
+    "default",
+    "do",
+    "double",
+    "else",
+    "enum",
+    "extern",
+    "false",
+    "float",
+    "for",
+    "goto",
+    "if",
+    "inline",
+    "int",
+    "long",
+    "nullptr",
+    "register",
+    "restrict",
+    "return",
+    "short",
+    "signed",
+    "sizeof",
+    "static",
+    "static_assert",
+    "struct",
+    "switch",
+    "thread_local",
+    "true",
+    "typedef",
+    "typeof",
+    "typeof_unqual",
+    "union",
+    "unsigned",
+    "void",
+    "volatile",
+    "while",
+    "_Alignas",
+    "_Alignof",
+    "_Atomic",
+    "_BitInt",
+    "_Bool",
+    "_Complex",
+    "_Decimal128",
+    "_Decimal32",
+    "_Decimal64",
+    "_Generic",
+    "_Imaginary",
+    "_Noreturn",
+    "_Static_assert",
+    "_Thread_local",
+];
+
 /// Renders `bytes` in `format`. `name` is the Rust static's or C array's
 /// name; `about` is a comment (provenance and contents, one line each).
 pub fn render(bytes: &[u8], format: Format, name: &str, about: &[String]) -> Result<Vec<u8>> {
     if format != Format::Bin && !is_identifier(name) {
         bail!("--name {name:?} is not a valid identifier");
+    }
+    let (language, keywords) = match format {
+        Format::Rust => ("Rust", RUST_KEYWORDS),
+        Format::C => ("C", C_KEYWORDS),
+        Format::Bin => ("", &[][..]),
+    };
+    if keywords.contains(&name) {
+        bail!("--name {name:?} is a keyword of {language}: choose another name");
     }
     let n = bytes.len();
     let mut s = String::new();
