@@ -335,3 +335,54 @@ fn candidates_are_distinct_effects_to_add() {
         "{e}"
     );
 }
+
+/// A parameter file's `"units"` are checked (both keys, known units, nothing else), and the
+/// verbs that simulate in mm and kN refuse parameters stated in other units, which they read as
+/// mm and kN before; `export` labels a device table with them.
+#[test]
+fn parameter_units_are_checked_and_never_ignored() {
+    let history = write("units-history.csv", "displacement (mm)\n0\n1\n2\n");
+    let with_units = |name: &str, units: &str| {
+        write(
+            name,
+            &BW.replace(
+                r#""model": "bw","#,
+                &format!(r#""model": "bw", "units": {units},"#),
+            ),
+        )
+    };
+    let simulate = |params: &str| hyst(&["simulate", &history, "--params", params]);
+    let foreign = with_units("units-foreign.json", r#"{"foo": "bar"}"#);
+    let e = cli::err(simulate(&foreign));
+    assert!(e.contains(r#""units" has a key "foo""#), "{e}");
+    let half = with_units("units-half.json", r#"{"displacement": "mm"}"#);
+    let e = cli::err(hyst(&["export", &half, "--format", "bin"]));
+    assert!(e.contains(r#""units" needs "force" as a string"#), "{e}");
+    let wrong = with_units(
+        "units-wrong.json",
+        r#"{"displacement": "kN", "force": "kN"}"#,
+    );
+    let e = cli::err(simulate(&wrong));
+    assert!(
+        e.contains(r#""units"."displacement" is 'kN'; expected a length unit"#),
+        "{e}"
+    );
+    let inches = with_units("units-in.json", r#"{"displacement": "in", "force": "kip"}"#);
+    let e = cli::err(simulate(&inches));
+    assert!(
+        e.contains("parameters in in and kip, but hyst simulates in mm and kN"),
+        "{e}"
+    );
+    let table = ok(hyst(&[
+        "export", &inches, "--format", "bin", "--scalar", "f64",
+    ]));
+    assert!(
+        cli::stderr(&table).contains("units in / kip"),
+        "{}",
+        cli::stderr(&table)
+    );
+    ok(simulate(&with_units(
+        "units-mm.json",
+        r#"{"displacement": "mm", "force": "kN"}"#,
+    )));
+}

@@ -14,6 +14,7 @@
 //! ```
 
 use super::{Extras, ModelSpec};
+use crate::data::{Quantity, Unit};
 use anyhow::{anyhow, bail, Context, Result};
 use hysteresis::bwbn::{BwbnParams, ENERGY_LIMIT};
 use serde_json::{Map, Value};
@@ -40,14 +41,62 @@ pub struct ParamFile {
     pub fit: Option<Value>,
 }
 
+/// The `units` object: `displacement` a length unit and `force` a force unit, both given,
+/// nothing else.
+fn checked_units(path: &Path, u: Map<String, Value>) -> Result<Map<String, Value>> {
+    for key in u.keys() {
+        if key != "displacement" && key != "force" {
+            bail!(
+                "{}: \"units\" has a key \"{key}\"; expected \"displacement\" and \"force\"",
+                path.display()
+            );
+        }
+    }
+    for (key, quantity) in [
+        ("displacement", Quantity::Length),
+        ("force", Quantity::Force),
+    ] {
+        let text = u.get(key).and_then(Value::as_str).ok_or_else(|| {
+            anyhow!(
+                "{}: \"units\" needs \"{key}\" as a string ({})",
+                path.display(),
+                quantity.known_symbols()
+            )
+        })?;
+        if Unit::parse(text).map(Unit::quantity) != Some(quantity) {
+            bail!(
+                "{}: \"units\".\"{key}\" is '{text}'; expected a {quantity} unit ({})",
+                path.display(),
+                quantity.known_symbols()
+            );
+        }
+    }
+    Ok(u)
+}
+
 impl ParamFile {
     /// Reads and checks the form of a parameter file (names are checked
-    /// against a model by [`ParamFile::build`]).
+    /// against a model by [`ParamFile::build`]) for the verbs that simulate
+    /// on the host, in mm and kN: a file whose `units` state others is
+    /// refused, not read as mm and kN. (`hyst export` reads any stated units
+    /// with [`parse`](Self::parse) and labels the table with them.)
     pub fn read(path: impl AsRef<Path>) -> Result<Self> {
         let path = path.as_ref();
         let text = std::fs::read_to_string(path)
             .with_context(|| format!("{}: cannot read", path.display()))?;
-        Self::parse(path, &text)
+        let file = Self::parse(path, &text)?;
+        if let Some(u) = &file.units {
+            let (d, f) = (&u["displacement"], &u["force"]);
+            if d != "mm" || f != "kN" {
+                bail!(
+                    "{}: parameters in {} and {}, but hyst simulates in mm and kN: give them in mm and kN (a device table takes other units from `hyst export`)",
+                    path.display(),
+                    d.as_str().unwrap_or_default(),
+                    f.as_str().unwrap_or_default()
+                );
+            }
+        }
+        Ok(file)
     }
 
     /// Parses the text of a parameter file.
@@ -79,7 +128,7 @@ impl ParamFile {
                             .with_context(|| format!("{}: key \"model\"", path.display()))?,
                     )
                 }
-                ("units", Value::Object(u)) => file.units = Some(u),
+                ("units", Value::Object(u)) => file.units = Some(checked_units(path, u)?),
                 ("fit", v) => file.fit = Some(v),
                 (k, v) if META.contains(&k) => bail!(
                     "{}: key \"{k}\" has the wrong type ({})",
