@@ -72,6 +72,7 @@ pub fn read(paths: &[PathBuf]) -> Result<Sources> {
     let mut bwbn = vec![];
     let mut phm = vec![];
     let mut units: Option<(PathBuf, (String, String))> = None;
+    let mut unstated: Vec<String> = vec![];
     let mut notes = vec![];
     for path in paths {
         let text = std::fs::read_to_string(path)
@@ -156,7 +157,17 @@ pub fn read(paths: &[PathBuf]) -> Result<Sources> {
                 Some(_) => {}
                 None => units = Some((path.clone(), u)),
             }
+        } else {
+            unstated.push(path.display().to_string());
         }
+    }
+    if let (Some((first, (d, f))), false) = (&units, unstated.is_empty()) {
+        notes.push(format!(
+            "{} state{} no units: the table takes {d} / {f} from {} for every element",
+            unstated.join(", "),
+            if unstated.len() == 1 { "s" } else { "" },
+            first.display()
+        ));
     }
     let units = match &units {
         Some((path, (d, f))) => Units::new(d, f).ok_or_else(|| {
