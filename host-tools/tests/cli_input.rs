@@ -381,6 +381,16 @@ fn parameter_units_are_checked_and_never_ignored() {
         "{}",
         cli::stderr(&table)
     );
+    // A file without units in the same table takes them, and the note says so.
+    let bare = write("units-none.json", BW);
+    let table = ok(hyst(&[
+        "export", &bare, &inches, "--format", "bin", "--scalar", "f64",
+    ]));
+    let notes = cli::stderr(&table);
+    assert!(
+        notes.contains("units-none.json states no units: the table takes in / kip from"),
+        "{notes}"
+    );
     ok(simulate(&with_units(
         "units-mm.json",
         r#"{"displacement": "mm", "force": "kN"}"#,
