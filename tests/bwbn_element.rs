@@ -314,3 +314,56 @@ fn asymmetry_gives_unequal_strength_and_stiffness() {
     let mut zero = Bwbn::new(off);
     assert_eq!(drive(&mut plain, &ups), drive(&mut zero, &ups));
 }
+
+/// In Q15.16 the hysteretic energy of a plain element passes 32767 kN mm after about 400 cycles
+/// of +-5 mm. No effect of plain Bouc-Wen reads it, so the element goes on (it refused every
+/// dissipating step from cycle 405 on), the energy reads as non-finite (saturated), and the force
+/// stays where `f32` has it; a degrading element, which reads the energy, still refuses.
+#[test]
+fn fixed_point_energy_overflow_stops_only_models_that_read_it() {
+    use hysteresis::{Fixed, Scalar};
+    fn params<S: Scalar>(set: EffectSet) -> BwbnParams<S> {
+        BwbnParams::from_named(set, |n| {
+            let v = match n {
+                "k0" => 6.0,
+                "alpha" => 0.2,
+                "n" => 1.2,
+                "beta" => 2.0,
+                "gamma" => -1.0,
+                "delta_nu" => 1e-6,
+                _ => return None,
+            };
+            Some(S::from_f64(v))
+        })
+        .unwrap()
+    }
+    let u = |i: usize| 5.0 * (2.0 * std::f64::consts::PI * i as f64 / 40.0).sin();
+    let plain = EffectSet::NONE;
+    let mut fixed = Bwbn::new(params::<Fixed>(plain));
+    let mut float = Bwbn::new(params::<f32>(plain));
+    for i in 1..=500 * 40 {
+        let r = fixed.set_trial(Fixed::from_f64(u(i)));
+        assert!(r.is_ok(), "step {i} (cycle {}): {r:?}", i / 40);
+        fixed.commit();
+        float.set_trial(u(i) as f32).unwrap();
+        float.commit();
+    }
+    assert!(!fixed.committed().energy.is_finite());
+    assert!(float.committed().energy > 32767.0);
+    // Within the fixed-point bound, 1e-3 of the peak force (0.2*6*5 + 0.8*6*1 = 10.8 kN).
+    let (a, b) = (
+        fixed.response().force.to_f64(),
+        f64::from(float.response().force),
+    );
+    assert!((a - b).abs() < 1e-3 * 10.8, "force {a} against f32 {b}");
+    // Strength degradation reads the energy: past the arithmetic's range it refuses.
+    let mut degrading = Bwbn::new(params::<Fixed>(
+        EffectSet::NONE.with(EffectKind::StrengthDegradation),
+    ));
+    let refused = (1..=500 * 40).find_map(|i| {
+        let r = degrading.set_trial(Fixed::from_f64(u(i)));
+        degrading.commit();
+        r.err()
+    });
+    assert!(refused.is_some(), "the degrading element never refused");
+}

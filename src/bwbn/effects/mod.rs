@@ -121,12 +121,25 @@ pub trait Effect<S: Scalar> {
     /// effects leave them alone.
     #[inline(always)]
     fn stiffness(&self, _base: &BoucWen<S>, _at: &At<S>, _k: &mut Stiffness<S>) {}
+
+    /// Whether the effect reads `at.energy`. Where no effect does, the
+    /// hysteretic energy is only reported: a value the arithmetic cannot hold
+    /// (Q15.16 past 32767) reads as non-finite but does not stop the element.
+    /// The default, `true`, is the safe answer for an effect that may.
+    #[inline(always)]
+    fn reads_energy(&self) -> bool {
+        true
+    }
 }
 
 /// No extra effect: the default extension of [`Bwbn`](super::Bwbn).
 impl<S: Scalar> Effect<S> for () {
     #[inline(always)]
     fn apply(&self, _: &BoucWen<S>, _: Option<S>, _: &At<S>, _: &mut Coefficients<S>) {}
+    #[inline(always)]
+    fn reads_energy(&self) -> bool {
+        false
+    }
 }
 
 impl<S: Scalar, E: Effect<S> + ?Sized> Effect<S> for &E {
@@ -137,6 +150,10 @@ impl<S: Scalar, E: Effect<S> + ?Sized> Effect<S> for &E {
     #[inline(always)]
     fn stiffness(&self, base: &BoucWen<S>, at: &At<S>, k: &mut Stiffness<S>) {
         (**self).stiffness(base, at, k)
+    }
+    #[inline(always)]
+    fn reads_energy(&self) -> bool {
+        (**self).reads_energy()
     }
 }
 
@@ -373,6 +390,16 @@ impl<S: Scalar> Effects<S> {
                 .zip(x.values())
                 .for_each(|(s, v)| f(s, v));
         }
+    }
+
+    /// Whether an effect that is on reads the energy (degradation of A, nu
+    /// or eta, pinching; asymmetry does not), or the extra effect may.
+    pub fn reads_energy<X: Effect<S>>(&self, extra: &X) -> bool {
+        self.a_degradation.is_some()
+            || self.strength_degradation.is_some()
+            || self.stiffness_degradation.is_some()
+            || self.pinching.is_some()
+            || extra.reads_energy()
     }
 
     /// Applies the effects: degradation and asymmetry first, then the extra
