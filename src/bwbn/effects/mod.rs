@@ -19,7 +19,8 @@
 //!    ([`ParamSpec`]s: name, symbol, equation, the value that
 //!    switches it off, units, fitting range), a validating constructor that
 //!    returns [`ParamError`] naming the field and rule, and an
-//!    [`Effect`] implementation.
+//!    [`Effect`] implementation (with [`Effect::reads_energy`] false if it
+//!    never reads `At::energy`).
 //! 2. Register it in [`EffectKind`] and [`Effects`] (name, field, order of
 //!    application).
 //!
