@@ -30,6 +30,18 @@ fn column_record() -> String {
     text
 }
 
+/// The first `lines` lines of the thesis' Bouc-Wen example (`benches/baselines/bw_synthetic.csv`:
+/// 500 kg, k = 6 kN/mm, F = t sin(2 pi t) kN at 500 Hz, its comment lines included) as `name`.
+fn thesis_example(name: &str, lines: usize) -> String {
+    let full = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../benches/baselines/bw_synthetic.csv"
+    ))
+    .unwrap();
+    let head: String = full.lines().take(lines).map(|l| format!("{l}\n")).collect();
+    write(name, &head)
+}
+
 /// Runs `hyst` with `args`, its standard output a pipe that nobody reads any more.
 fn into_closed_pipe(args: &[&str]) -> Output {
     // A pipe whose reading end has gone: `true` held it and has exited.
@@ -128,13 +140,7 @@ fn fixed_values_are_checked_once_and_by_the_models_rules() {
 /// is simulated (it was refused, and the fit failed), and the fit reaches the record.
 #[test]
 fn a_short_force_driven_record_fits_plain_bouc_wen() {
-    let full = std::fs::read_to_string(concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/../benches/baselines/bw_synthetic.csv"
-    ))
-    .unwrap();
-    let short: String = full.lines().take(1000).map(|l| format!("{l}\n")).collect();
-    let data = write("bw-short.csv", &short);
+    let data = thesis_example("bw-short.csv", 1000);
     let out = ok(hyst(&[
         "fit", &data, "--mass", "500", "--fix", "k0=6", "--method", "lsq", "--json",
     ]));
@@ -179,13 +185,7 @@ fn records_without_anything_to_fit_are_refused() {
 /// it as `simulate` does (they refused the file without `--mass`, blaming `--forcing`).
 #[test]
 fn force_driven_fit_files_carry_their_mass_to_every_verb() {
-    let full = std::fs::read_to_string(concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/../benches/baselines/bw_synthetic.csv"
-    ))
-    .unwrap();
-    let short: String = full.lines().take(600).map(|l| format!("{l}\n")).collect();
-    let data = write("bw-mass.csv", &short);
+    let data = thesis_example("bw-mass.csv", 600);
     let fit = cli::tmp("bw-mass-fit.json");
     let fit = fit.to_str().unwrap();
     ok(hyst(&[
@@ -261,13 +261,7 @@ fn export_histories_are_of_the_elements_quantity() {
 /// on the parameter file, not on the record.
 #[test]
 fn force_driven_simulate_names_the_right_file() {
-    let full = std::fs::read_to_string(concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/../benches/baselines/bw_synthetic.csv"
-    ))
-    .unwrap();
-    let short: String = full.lines().take(200).map(|l| format!("{l}\n")).collect();
-    let data = write("bw-sim.csv", &short);
+    let data = thesis_example("bw-sim.csv", 200);
     let with_xi = |xi: f64| {
         format!(
             r#"{{"model": "bw", "k0": 6, "alpha": 0.2, "n": 1.2, "beta": 2, "gamma": -1, "m": 500, "xi": {xi}}}"#
