@@ -276,3 +276,23 @@ fn an_elastic_run_has_no_primary_curve_and_says_why() {
     assert!(out.join("section_shear.csv").exists());
     std::fs::remove_dir_all(&out).ok();
 }
+
+/// A run that becomes unstable (here an hourglass stiffness 1000 times the default, which the
+/// time step does not follow) ends with an error naming the time it diverged, not with a panic
+/// in the material or NaN results reported as a run.
+#[test]
+fn a_diverging_run_is_an_error() {
+    let out = hyst(&[
+        "fe",
+        "../specimens/tp-91.toml",
+        "--element-size",
+        "100",
+        "--set",
+        "loading.twist=[[0.0, 0.0], [0.002, 0.001]]",
+        "--set",
+        "analysis.hourglass_scale=1000",
+    ]);
+    let e = err(out);
+    assert!(!e.contains("panicked"), "{e}");
+    assert!(e.contains("TP-91: the run diverged at t = "), "{e}");
+}

@@ -447,7 +447,9 @@ impl ConcreteDamagedPlasticity {
             let radius = (h2 + q * q).sqrt();
             let g = q + k * q / radius - q_tr;
             let slope = 1.0 + k * h2 / (radius * radius * radius);
-            let next = (q - g / slope).clamp(0.0, q_tr);
+            // max/min, not clamp: a NaN (a diverged run, reported by the solver) must not
+            // panic here.
+            let next = (q - g / slope).max(0.0).min(q_tr);
             if (next - q).abs() <= 1e-14 * q_tr {
                 return next;
             }

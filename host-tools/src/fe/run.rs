@@ -273,6 +273,16 @@ pub fn run<M: SolidMaterial, B: BarMaterial>(
             break;
         }
         s.step();
+        // An unstable run (a stiffness or force far beyond the specimen's, e.g. an axial
+        // force that crushes the column at once) ends with an error, not with NaN results.
+        let torque = s.top.reaction[super::explicit::dof::RZ];
+        anyhow::ensure!(
+            s.energy.kinetic.is_finite() && torque.is_finite(),
+            "{}: the run diverged at t = {:.6} s (step {} of {steps}): the kinetic energy or the torque is no longer finite",
+            spec.name,
+            s.t,
+            s.steps
+        );
         trace.push(s.t, s.energy);
         if s.steps % every == 0 || s.steps == steps {
             write_row(&s, &mut files, &mut rec)?;

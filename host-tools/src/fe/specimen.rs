@@ -534,17 +534,18 @@ impl Specimen {
                 "the time to apply the axial force in s",
             )?;
         }
-        if ld.twist.len() < 2 || ld.twist[0][0] != 0.0 {
+        // The top starts untwisted: a first row [0, 0.05] would be read as [0, 0].
+        if ld.twist.len() < 2 || ld.twist[0] != [0.0, 0.0] {
             return Err((
                 "loading.twist",
-                "a table of at least two [time s, twist rad] rows starting at time 0".into(),
+                "a table of at least two [time s, twist rad] rows starting at [0, 0]".into(),
             ));
         }
         for w in ld.twist.windows(2) {
-            if !(w[1][0] > w[0][0]) || !w[1][1].is_finite() {
+            if !(w[1][0] > w[0][0] && w[1][0].is_finite() && w[1][1].is_finite()) {
                 return Err((
                     "loading.twist",
-                    "strictly increasing times and finite twists".into(),
+                    "strictly increasing finite times and finite twists".into(),
                 ));
             }
         }
@@ -554,11 +555,17 @@ impl Specimen {
             "analysis.element_size_mm",
             "the element size in mm",
         )?;
-        if !(a.hourglass_scale >= 0.0) {
-            return Err(("analysis.hourglass_scale", "a scale of 0 or more".into()));
+        if !(a.hourglass_scale >= 0.0 && a.hourglass_scale.is_finite()) {
+            return Err((
+                "analysis.hourglass_scale",
+                "a finite scale of 0 or more".into(),
+            ));
         }
-        if !(a.bulk_viscosity[0] >= 0.0 && a.bulk_viscosity[1] >= 0.0) {
-            return Err(("analysis.bulk_viscosity", "[b1, b2], both 0 or more".into()));
+        if !a.bulk_viscosity.iter().all(|b| *b >= 0.0 && b.is_finite()) {
+            return Err((
+                "analysis.bulk_viscosity",
+                "[b1, b2], both finite and 0 or more".into(),
+            ));
         }
         if !(a.dt_safety > 0.0 && a.dt_safety <= 1.0) {
             return Err(("analysis.dt_safety", "a fraction in (0, 1]".into()));
@@ -928,6 +935,47 @@ mod tests {
             e.message.contains("reference.table_2_1.test_peak_knm"),
             "{e}"
         );
+    }
+
+    /// Values that used to be accepted and then ignored (a first twist other than 0) or that
+    /// ran forever or panicked (an infinite time, hourglass scale or bulk viscosity).
+    #[test]
+    fn twist_tables_and_analysis_values_must_be_usable() {
+        let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../specimens/tp-91.toml");
+        let src = std::fs::read_to_string(&dir).expect("read");
+        let twist = src
+            .lines()
+            .find(|l| l.starts_with("twist = "))
+            .expect("a twist line")
+            .to_string();
+        let cases = [
+            (
+                twist.clone(),
+                "twist = [[0.0, 0.05], [0.1, 0.1]]".to_string(),
+                "starting at [0, 0]",
+            ),
+            (
+                twist,
+                "twist = [[0.0, 0.0], [inf, 0.1]]".to_string(),
+                "strictly increasing finite times",
+            ),
+            (
+                "hourglass_scale = 1.0".to_string(),
+                "hourglass_scale = inf".to_string(),
+                "a finite scale of 0 or more",
+            ),
+            (
+                "bulk_viscosity = [0.06, 1.2]".to_string(),
+                "bulk_viscosity = [inf, 1.2]".to_string(),
+                "both finite and 0 or more",
+            ),
+        ];
+        for (from, to, expected) in cases {
+            let bad = src.replacen(&from, &to, 1);
+            assert_ne!(bad, src, "{from} is not in the file");
+            let e = Specimen::parse(&bad, Path::new("x.toml")).expect_err(&to);
+            assert!(e.message.contains(expected), "{to}: {e}");
+        }
     }
 
     #[test]
