@@ -472,8 +472,10 @@ pub(crate) mod tests {
         let input: Vec<f64> = (0..=(seconds * rate_hz) as usize)
             .map(|i| force(i as f64 * dt))
             .collect();
+        // A placeholder output (it must vary to make a problem), replaced by the truth's
+        // prediction below.
         let exp = Experiment {
-            output: vec![1.0; input.len()],
+            output: input.clone(),
             input,
             drive: Drive::Force {
                 dt,
