@@ -331,6 +331,40 @@ fn errors_name_the_file_and_what_was_expected() {
         e.contains("--fix eq9: not a variable of this fit") && e.contains("positive.theta_c"),
         "{e}"
     );
+    let e = err(hyst(&[
+        "fit",
+        &rec,
+        "--model",
+        "phm-torsion",
+        "--params",
+        &p,
+        "--fix",
+        "eq4_a=0.5",
+        "--fix",
+        "eq4_a=0.6",
+    ]));
+    assert!(e.contains("`eq4_a` is fixed twice"), "{e}");
     let e = err(hyst(&["fit", &rec, "--model", "bw"]));
     assert!(e.contains("a twist/torque record"), "{e}");
+
+    // Units hold twist and torque only; a curve holds at most PHM_POINTS (8) points here.
+    let extra = write(
+        "units_extra.json",
+        &TRUTH.replace(r#""torque": "kN m""#, r#""torque": "kN m", "force": "kN""#),
+    );
+    let e = err(hyst(&["simulate", &h, "--params", &extra]));
+    assert!(e.contains(r#""units" has a key "force""#), "{e}");
+    let nine: Vec<String> = (1..=9).map(|i| format!("[{}, {}]", i, 100 + i)).collect();
+    let nine = write(
+        "nine.json",
+        &format!(
+            r#"{{"model": "phm-torsion", "primary": {{"positive": [{}]}}}}"#,
+            nine.join(", ")
+        ),
+    );
+    let e = err(hyst(&["simulate", &h, "--params", &nine]));
+    assert!(
+        e.contains("primary.positive has 9 points; a curve here has at most 8"),
+        "{e}"
+    );
 }

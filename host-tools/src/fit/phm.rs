@@ -346,6 +346,9 @@ impl PhmProblem {
             if !value.is_finite() {
                 bail!("--fix {name}={value}: expected a finite number");
             }
+            if fix.iter().filter(|(n, _)| n == name).count() > 1 {
+                bail!("`{name}` is fixed twice: fix it once");
+            }
             v.start = *value;
             v.fixed = true;
         }

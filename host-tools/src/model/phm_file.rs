@@ -129,6 +129,15 @@ impl PhmFile {
                     }
                 }
                 "units" => {
+                    if let Some(other) = v
+                        .as_object()
+                        .and_then(|u| u.keys().find(|k| *k != "twist" && *k != "torque"))
+                    {
+                        bail!(
+                            "{}: \"units\" has a key \"{other}\"; expected \"twist\" and \"torque\"",
+                            path.display()
+                        );
+                    }
                     let get = |k: &str| v.get(k).and_then(Value::as_str).map(str::to_string);
                     match (get("twist"), get("torque")) {
                         (Some(t), Some(m)) => {
@@ -188,6 +197,18 @@ impl PhmFile {
         }
         let positive =
             positive.ok_or_else(|| anyhow!("{}: primary.positive is missing", path.display()))?;
+        for (side, curve) in [
+            ("positive", Some(&positive)),
+            ("negative", negative.as_ref()),
+        ] {
+            if let Some(c) = curve.filter(|c| c.len() > PHM_POINTS) {
+                bail!(
+                    "{}: primary.{side} has {} points; a curve here has at most {PHM_POINTS}",
+                    path.display(),
+                    c.len()
+                );
+            }
+        }
         let negative = negative.unwrap_or_else(|| positive.clone());
         let params = PhmParams::from_named(&positive, &negative, |name| {
             coefficients.get(name).and_then(Value::as_f64)
