@@ -125,6 +125,31 @@ pub struct SteelSpec {
     pub density_kg_m3: f64,
 }
 
+/// Two numbers, exactly: the TOML reader would take the first two of a longer array and drop
+/// the rest without a word.
+fn pair<'de, D: serde::Deserializer<'de>>(d: D) -> Result<[f64; 2], D::Error> {
+    let v = Vec::<f64>::deserialize(d)?;
+    <[f64; 2]>::try_from(v.as_slice())
+        .map_err(|_| serde::de::Error::custom(format!("expected 2 numbers, found {}", v.len())))
+}
+
+/// A table of rows of two numbers each (see [`pair`]).
+fn pairs<'de, D: serde::Deserializer<'de>>(d: D) -> Result<Vec<[f64; 2]>, D::Error> {
+    Vec::<Vec<f64>>::deserialize(d)?
+        .into_iter()
+        .enumerate()
+        .map(|(i, row)| {
+            <[f64; 2]>::try_from(row.as_slice()).map_err(|_| {
+                serde::de::Error::custom(format!(
+                    "expected rows of 2 numbers, found {} in row {}",
+                    row.len(),
+                    i + 1
+                ))
+            })
+        })
+        .collect()
+}
+
 /// Loading (thesis 2.5): a constant axial force applied first, then the
 /// twist history at the top reference point.
 #[derive(Clone, Debug, PartialEq, Deserialize)]
@@ -136,6 +161,7 @@ pub struct LoadingSpec {
     pub axial_ramp_s: f64,
     /// Twist history `[time s, twist rad]`, time counted from the end of
     /// the axial ramp.
+    #[serde(deserialize_with = "pairs")]
     pub twist: Vec<[f64; 2]>,
     /// Interpolation of the twist table.
     pub interpolation: Interpolation,
@@ -150,6 +176,7 @@ pub struct AnalysisSpec {
     /// Hourglass stiffness scale (see [`Settings::hourglass_scale`]).
     pub hourglass_scale: f64,
     /// Bulk viscosity `[b1, b2]`.
+    #[serde(deserialize_with = "pair")]
     pub bulk_viscosity: [f64; 2],
     /// Fraction of the stable step used.
     pub dt_safety: f64,
@@ -589,6 +616,12 @@ impl Specimen {
                     format!("set \"longitudinal\" or \"transverse\", found {:?}", st.set),
                 ));
             }
+            if !st.angle_deg.is_finite() {
+                return Err((
+                    "output.rebar_station",
+                    format!("a finite angle_deg, found {}", st.angle_deg),
+                ));
+            }
             if !(st.z_m >= 0.0 && st.z_m <= self.column.height_m) {
                 return Err((
                     "output.rebar_station",
@@ -955,9 +988,24 @@ mod tests {
                 "starting at [0, 0]",
             ),
             (
-                twist,
+                twist.clone(),
                 "twist = [[0.0, 0.0], [inf, 0.1]]".to_string(),
                 "strictly increasing finite times",
+            ),
+            (
+                twist.clone(),
+                "twist = [[0.0, 0.0, 9.0], [0.1, 0.1, 1.0]]".to_string(),
+                "expected rows of 2 numbers, found 3 in row 1",
+            ),
+            (
+                "bulk_viscosity = [0.06, 1.2]".to_string(),
+                "bulk_viscosity = [0.06, 1.2, 5.0]".to_string(),
+                "expected 2 numbers, found 3",
+            ),
+            (
+                "angle_deg = 0.0".to_string(),
+                "angle_deg = nan".to_string(),
+                "a finite angle_deg",
             ),
             (
                 "hourglass_scale = 1.0".to_string(),
