@@ -521,6 +521,31 @@ impl Specimen {
                 "cover and bars that fit inside the section".into(),
             ));
         }
+        // Neighbouring longitudinal bars may touch, not overlap (their centre line, from
+        // `radii`, in mm).
+        let rl = s.size_mm / 2.0 - s.clear_cover_mm - t.bar_diameter_mm - l.bar_diameter_mm / 2.0;
+        let pitch = match s.shape {
+            Shape::Circular => 2.0 * rl * (PI / l.count as f64).sin(),
+            Shape::Square => 2.0 * rl / (l.count / 4) as f64,
+        };
+        if pitch < l.bar_diameter_mm {
+            return Err((
+                "longitudinal.count",
+                format!(
+                    "bars that fit side by side: {} bars of {} mm are {pitch:.1} mm apart, centre to centre",
+                    l.count, l.bar_diameter_mm
+                ),
+            ));
+        }
+        if t.spacing_mm >= self.column.height_m * 1000.0 {
+            return Err((
+                "transverse.spacing_mm",
+                format!(
+                    "a spacing below the column's height ({} mm), or the column has no transverse bars",
+                    self.column.height_m * 1000.0
+                ),
+            ));
+        }
         pos(
             self.steel.elastic_modulus_mpa,
             "steel.elastic_modulus_mpa",
@@ -1006,6 +1031,16 @@ mod tests {
                 "angle_deg = 0.0".to_string(),
                 "angle_deg = nan".to_string(),
                 "a finite angle_deg",
+            ),
+            (
+                "count = 16".to_string(),
+                "count = 400".to_string(),
+                "400 bars of 12.7 mm are 3.2 mm apart",
+            ),
+            (
+                "spacing_mm = 47.0".to_string(),
+                "spacing_mm = 5000.0".to_string(),
+                "a spacing below the column's height (1350 mm)",
             ),
             (
                 "hourglass_scale = 1.0".to_string(),
