@@ -537,12 +537,13 @@ impl Specimen {
                 ),
             ));
         }
-        if t.spacing_mm >= self.column.height_m * 1000.0 {
+        // Hoops sit at s/2, 3s/2, ... below the top (`bar_sets`): at least one must fit.
+        if t.kind == TransverseKind::Hoops && t.spacing_mm / 2.0 >= self.column.height_m * 1000.0 {
             return Err((
                 "transverse.spacing_mm",
                 format!(
-                    "a spacing below the column's height ({} mm), or the column has no transverse bars",
-                    self.column.height_m * 1000.0
+                    "a spacing that places at least one hoop (below twice the column's height, {} mm)",
+                    2.0 * self.column.height_m * 1000.0
                 ),
             ));
         }
@@ -1040,7 +1041,7 @@ mod tests {
             (
                 "spacing_mm = 47.0".to_string(),
                 "spacing_mm = 5000.0".to_string(),
-                "a spacing below the column's height (1350 mm)",
+                "at least one hoop (below twice the column's height, 2700 mm)",
             ),
             (
                 "hourglass_scale = 1.0".to_string(),
