@@ -13,10 +13,24 @@
 use serde::de::{self, Deserialize, Deserializer, MapAccess, SeqAccess, Visitor};
 use serde_json::{Map, Value};
 use std::fmt;
+use std::path::Path;
 
 /// Parses `text` as one JSON value, refusing an object that names a key twice.
 pub fn parse(text: &str) -> Result<Value, serde_json::Error> {
     serde_json::from_str::<Unique>(text).map(|u| u.0)
+}
+
+/// [`parse`] for the text of the file at `path`, its error as `path:line:column: not valid
+/// JSON: ...`.
+pub fn parse_file(path: &Path, text: &str) -> anyhow::Result<Value> {
+    parse(text).map_err(|e| {
+        anyhow::anyhow!(
+            "{}:{}:{}: not valid JSON: {e}",
+            path.display(),
+            e.line(),
+            e.column()
+        )
+    })
 }
 
 /// A JSON value built by [`UniqueVisitor`].

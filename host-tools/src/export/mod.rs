@@ -77,14 +77,7 @@ pub fn read(paths: &[PathBuf]) -> Result<Sources> {
     for path in paths {
         let text = std::fs::read_to_string(path)
             .with_context(|| format!("{}: cannot read", path.display()))?;
-        let value = crate::data::unique_keys::parse(&text).map_err(|e| {
-            anyhow!(
-                "{}:{}:{}: not valid JSON: {e}",
-                path.display(),
-                e.line(),
-                e.column()
-            )
-        })?;
+        let value = crate::data::unique_keys::parse_file(path, &text)?;
         let (stated, kind) = if is_phm(&value) {
             let f = PhmFile::from_value(path, &value)?;
             phm.push(f.params);

@@ -101,14 +101,7 @@ impl ParamFile {
 
     /// Parses the text of a parameter file.
     pub fn parse(path: &Path, text: &str) -> Result<Self> {
-        let value: Value = crate::data::unique_keys::parse(text).map_err(|e| {
-            anyhow!(
-                "{}:{}:{}: not valid JSON: {e}",
-                path.display(),
-                e.line(),
-                e.column()
-            )
-        })?;
+        let value: Value = crate::data::unique_keys::parse_file(path, text)?;
         let Value::Object(map) = value else {
             bail!(
                 "{}: expected a JSON object of parameters, found {}",

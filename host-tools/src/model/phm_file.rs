@@ -89,14 +89,7 @@ impl PhmFile {
         let path = path.as_ref();
         let text = std::fs::read_to_string(path)
             .with_context(|| format!("{}: cannot read", path.display()))?;
-        let value: Value = crate::data::unique_keys::parse(&text).map_err(|e| {
-            anyhow!(
-                "{}:{}:{}: not valid JSON: {e}",
-                path.display(),
-                e.line(),
-                e.column()
-            )
-        })?;
+        let value: Value = crate::data::unique_keys::parse_file(path, &text)?;
         Self::from_value(path, &value)
     }
 
