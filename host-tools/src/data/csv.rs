@@ -461,32 +461,25 @@ impl Reader {
                 ),
             )
         })?;
-        if !value.is_finite() {
+        let canonical = self.col.unit.map_or(value, |u| u.to_canonical(value));
+        if !canonical.is_finite() {
+            let column_name = &self.col.text;
+            // Finite as written (1e306 m) and not in mm, or not finite at all.
+            let expected = match self.col.unit {
+                Some(u) if value.is_finite() => format!(
+                    "a number for column '{column_name}' that stays finite in {}",
+                    u.quantity().canonical().symbol()
+                ),
+                _ => format!("a finite number for column '{column_name}'"),
+            };
             return Err(DataError::at(
                 file,
                 line,
                 column,
-                format!(
-                    "expected a finite number for column '{}', found '{text}'",
-                    self.col.text
-                ),
+                format!("expected {expected}, found '{text}'"),
             ));
         }
-        let value = self.col.unit.map_or(value, |u| u.to_canonical(value));
-        if !value.is_finite() {
-            return Err(DataError::at(
-                file,
-                line,
-                column,
-                format!(
-                    "expected a number for column '{}' that stays finite in {}, found '{text}'",
-                    self.col.text,
-                    self.col
-                        .unit
-                        .map_or("", |u| u.quantity().canonical().symbol())
-                ),
-            ));
-        }
+        let value = canonical;
         if self.increasing {
             if let Some((prev, prev_line, prev_text)) = &self.last {
                 if value <= *prev {
