@@ -184,14 +184,12 @@ impl<S: Scalar> Branch<S> {
     /// (`k_T1` of the direction reloaded towards), so that it meets the
     /// primary curve (rule 6), whose tail is flat (G7).
     pub(crate) fn finish_rising<const N: usize>(&mut self, bound: &Backbone<S, N>, k: S) {
-        let n = self.n as usize;
-        if n >= 2 {
-            self.v[n - 1][2] = self.v[n - 2][2];
+        self.finish(bound);
+        let last = self.n as usize - 1;
+        if !(self.v[last][2] > S::ZERO) {
+            self.v[last][2] = k;
+            self.contact = self.first_contact(bound);
         }
-        if !(self.v[n - 1][2] > S::ZERO) {
-            self.v[n - 1][2] = k;
-        }
-        self.contact = self.first_contact(bound);
     }
 
     /// The first x >= x[0] where the branch reaches the bound: both are
