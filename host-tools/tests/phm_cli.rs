@@ -317,32 +317,26 @@ fn errors_name_the_file_and_what_was_expected() {
         e.contains("rec.csv: the positive direction has 2 samples"),
         "{e}"
     );
-    let e = err(hyst(&[
-        "fit",
-        &rec,
-        "--model",
-        "phm-torsion",
-        "--params",
-        &p,
-        "--fix",
-        "eq9=1",
-    ]));
+    let fit_fixing = |fixes: &[&str]| {
+        let mut args = vec![
+            "fit",
+            rec.as_str(),
+            "--model",
+            "phm-torsion",
+            "--params",
+            &p,
+        ];
+        for f in fixes {
+            args.extend(["--fix", f]);
+        }
+        err(hyst(&args))
+    };
+    let e = fit_fixing(&["eq9=1"]);
     assert!(
         e.contains("--fix eq9: not a variable of this fit") && e.contains("positive.theta_c"),
         "{e}"
     );
-    let e = err(hyst(&[
-        "fit",
-        &rec,
-        "--model",
-        "phm-torsion",
-        "--params",
-        &p,
-        "--fix",
-        "eq4_a=0.5",
-        "--fix",
-        "eq4_a=0.6",
-    ]));
+    let e = fit_fixing(&["eq4_a=0.5", "eq4_a=0.6"]);
     assert!(e.contains("`eq4_a` is fixed twice"), "{e}");
     let e = err(hyst(&["fit", &rec, "--model", "bw"]));
     assert!(e.contains("a twist/torque record"), "{e}");
