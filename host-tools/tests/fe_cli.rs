@@ -296,3 +296,24 @@ fn a_diverging_run_is_an_error() {
     assert!(!e.contains("panicked"), "{e}");
     assert!(e.contains("TP-91: the run diverged at t = "), "{e}");
 }
+
+/// A mesh or thread count the run could not use is refused before any work: one element
+/// across used to run as a 1-element mesh, and 3,000 threads took 34 s for a run two threads
+/// do in 0.01 s, all of them waiting at each step's barrier.
+#[test]
+fn unusable_mesh_sizes_and_thread_counts_are_refused() {
+    let tp91 = specimen("tp-91.toml");
+    let e = err(hyst(&["fe", &tp91, "--element-size", "1e9"]));
+    assert!(
+        e.contains("--element-size 1000000000: `analysis.element_size_mm`: expected at most a quarter of the section's 400 mm"),
+        "{e}"
+    );
+    let e = err(hyst(&["fe", &tp91, "--threads", "100000"]));
+    assert!(e.contains("--threads: expected 1 to "), "{e}");
+    assert!(e.contains("found 100000"), "{e}");
+    let e = err(hyst(&["fe", &tp91, "--set", "analysis.threads=100000"]));
+    assert!(
+        e.contains("analysis.threads of the specimen file: expected 1 to "),
+        "{e}"
+    );
+}

@@ -36,10 +36,12 @@ pub struct FeArgs {
     /// and yielding steel (thesis 2.2).
     #[arg(long)]
     pub elastic: bool,
-    /// Worker threads (overrides the specimen file).
+    /// Worker threads (overrides the specimen file; at most four for each
+    /// hardware thread of the machine).
     #[arg(long)]
     pub threads: Option<usize>,
-    /// Element size in mm (overrides the specimen file).
+    /// Element size in mm (overrides the specimen file; at most a quarter of
+    /// the section, and at most 5 million elements).
     #[arg(long)]
     pub element_size: Option<f64>,
     /// Replace a value of the specimen file for this run, e.g.
@@ -60,6 +62,9 @@ fn parse_override(s: &str) -> Result<(String, String), String> {
 /// files written so far, and still prints the summary.
 pub fn run_fe(args: FeArgs) -> anyhow::Result<()> {
     let spec = Specimen::load_with(&args.specimen, &args.overrides)?;
+    for note in spec.notes() {
+        eprintln!("note: {note}");
+    }
     let stop = Arc::new(AtomicBool::new(false));
     let flag = stop.clone();
     ctrlc::set_handler(move || flag.store(true, Ordering::Relaxed))?;

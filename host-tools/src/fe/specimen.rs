@@ -28,8 +28,10 @@ use super::model::Settings;
 use super::rebar::{self, BarSet};
 use super::steel::{HardeningSteel, HARDENING_RATIO};
 use serde::Deserialize;
+use std::borrow::Cow;
 use std::collections::BTreeMap;
 use std::f64::consts::PI;
+use std::ops::Range;
 use std::path::{Path, PathBuf};
 
 /// Cross-section shape.
@@ -276,6 +278,16 @@ pub struct Specimen {
     pub assumed: BTreeMap<String, String>,
 }
 
+/// The most elements a specimen's mesh may have: about 3.7 GB of state at
+/// the 0.73 kB an element measured (TP-91 at 50 and 25 mm, maximum resident
+/// size), and 45 times the 12.5 mm convergence run. A finer mesh is refused
+/// when the file is read rather than failing to allocate after minutes.
+const MAX_ELEMENTS: f64 = 5e6;
+
+/// A value [`Specimen::check`] refuses: its dotted key path (numbers index
+/// arrays) and what was expected.
+type Fault = (Cow<'static, str>, String);
+
 /// An error in a specimen file, with its place.
 #[derive(Clone, Debug, PartialEq)]
 pub struct SpecError {
@@ -377,6 +389,173 @@ fn locate(src: &str, path: &str) -> usize {
     at
 }
 
+/// Specimen text as parsed, with what errors are placed against: the
+/// file's own text and the `--set` overrides that changed it.
+struct Source<'a> {
+    text: &'a str,
+    file_text: &'a str,
+    overrides: &'a [(String, String)],
+    file: &'a Path,
+}
+
+impl Source<'_> {
+    fn parse(&self) -> Result<Specimen, SpecError> {
+        let spec: Specimen = toml::from_str(self.text).map_err(|e| {
+            let at = e.span().map_or(0, |s| s.start);
+            self.error_at(at, e.message().to_string())
+        })?;
+        spec.check().map_err(|(path, expected)| {
+            self.error_on(&path, format!("`{path}`: expected {expected}"))
+        })?;
+        for key in spec.assumed.keys() {
+            if !resolves(self.text, key) {
+                return Err(self.error(
+                    line_col(self.file_text, assumed_entry(self.file_text, key)),
+                    format!(
+                        "[assumed] \"{key}\": expected the dotted key of a value this file gives, such as \"transverse.spacing_mm\""
+                    ),
+                ));
+            }
+        }
+        Ok(spec)
+    }
+
+    /// An error at a byte offset of the parsed text. Without overrides that
+    /// is the file's own place; with them, the key there is found again in
+    /// the file, as inserted keys move the lines below them.
+    fn error_at(&self, offset: usize, message: String) -> SpecError {
+        match path_at(self.text, offset) {
+            Some(path) if !self.overrides.is_empty() => self.error_on(&path, message),
+            _ => self.error(line_col(self.text, offset), message),
+        }
+    }
+
+    /// An error about the value at a dotted key path: at its place in the
+    /// file, or, where a `--set` gave it, naming that override (placed at
+    /// the key it replaced, or at the table it was added to).
+    fn error_on(&self, path: &str, message: String) -> SpecError {
+        let set = self.overrides.iter().rev().find(|(k, _)| {
+            path == k
+                || path
+                    .strip_prefix(k.as_str())
+                    .is_some_and(|r| r.starts_with('.'))
+        });
+        match set {
+            Some((k, v)) => self.error(
+                line_col(self.file_text, locate(self.file_text, k)),
+                format!("--set {k}={v}: {message}"),
+            ),
+            None => self.error(
+                line_col(self.file_text, locate(self.file_text, path)),
+                message,
+            ),
+        }
+    }
+
+    fn error(&self, (line, column): (usize, usize), message: String) -> SpecError {
+        SpecError {
+            file: self.file.to_owned(),
+            line,
+            column,
+            message,
+        }
+    }
+}
+
+/// The dotted key path (numbers index arrays) of the innermost key or
+/// value whose text contains the byte `offset`.
+fn path_at(src: &str, offset: usize) -> Option<String> {
+    fn consider(
+        span: Option<Range<usize>>,
+        path: &str,
+        offset: usize,
+        best: &mut Option<(usize, String)>,
+    ) {
+        if let Some(s) = span {
+            if s.contains(&offset) && best.as_ref().is_none_or(|(len, _)| s.len() <= *len) {
+                *best = Some((s.len(), path.to_string()));
+            }
+        }
+    }
+    fn join(path: &str, key: &str) -> String {
+        if path.is_empty() {
+            key.to_string()
+        } else {
+            format!("{path}.{key}")
+        }
+    }
+    fn value(v: &toml_edit::Value, path: &str, offset: usize, best: &mut Option<(usize, String)>) {
+        consider(v.span(), path, offset, best);
+        match v {
+            toml_edit::Value::Array(a) => {
+                for (i, e) in a.iter().enumerate() {
+                    value(e, &join(path, &i.to_string()), offset, best);
+                }
+            }
+            toml_edit::Value::InlineTable(t) => {
+                for (k, e) in t.iter() {
+                    let p = join(path, k);
+                    consider(t.key(k).and_then(|k| k.span()), &p, offset, best);
+                    value(e, &p, offset, best);
+                }
+            }
+            _ => {}
+        }
+    }
+    fn table(t: &toml_edit::Table, path: &str, offset: usize, best: &mut Option<(usize, String)>) {
+        consider(t.span(), path, offset, best);
+        for (k, item) in t.iter() {
+            let p = join(path, k);
+            consider(t.key(k).and_then(|k| k.span()), &p, offset, best);
+            match item {
+                toml_edit::Item::Value(v) => value(v, &p, offset, best),
+                toml_edit::Item::Table(t) => table(t, &p, offset, best),
+                toml_edit::Item::ArrayOfTables(a) => {
+                    for (i, t) in a.iter().enumerate() {
+                        table(t, &join(&p, &i.to_string()), offset, best);
+                    }
+                }
+                toml_edit::Item::None => {}
+            }
+        }
+    }
+    let doc = toml_edit::ImDocument::parse(src).ok()?;
+    let mut best = None;
+    table(doc.as_table(), "", offset, &mut best);
+    best.map(|(_, path)| path).filter(|p| !p.is_empty())
+}
+
+/// Byte offset of the entry `key` of the `[assumed]` table (whose keys are
+/// quoted dotted paths, so [`locate`] cannot walk to them).
+fn assumed_entry(src: &str, key: &str) -> usize {
+    toml_edit::ImDocument::parse(src)
+        .ok()
+        .and_then(|doc| {
+            let t = doc.get("assumed")?.as_table()?;
+            t.key(key)?.span().map(|s| s.start)
+        })
+        .unwrap_or(0)
+}
+
+/// Whether a dotted key path names a value of the text.
+fn resolves(src: &str, path: &str) -> bool {
+    let Ok(doc) = toml_edit::ImDocument::parse(src) else {
+        return false;
+    };
+    let mut item = doc.as_item();
+    for seg in path.split('.') {
+        let next = match seg.parse::<usize>() {
+            Ok(i) => item.get(i),
+            Err(_) => item.get(seg),
+        };
+        match next {
+            Some(n) => item = n,
+            None => return false,
+        }
+    }
+    item.is_value()
+}
+
 /// The text of a specimen file, or an error naming it.
 fn read_source(path: &Path) -> Result<String, SpecError> {
     std::fs::read_to_string(path).map_err(|e| SpecError {
@@ -399,7 +578,8 @@ impl Specimen {
     /// `transverse.spacing_mm`) to the TOML value before the file is checked.
     /// A key whose table does not exist, or a value that is not TOML, is an
     /// error naming the override; the checks of [`Specimen::parse`] then
-    /// apply to the changed file as to any other (unknown keys included).
+    /// apply to the changed file as to any other (unknown keys included),
+    /// and an error in a replaced value names its `--set`.
     pub fn load_with(path: &Path, overrides: &[(String, String)]) -> Result<Specimen, SpecError> {
         if overrides.is_empty() {
             return Specimen::load(path);
@@ -411,44 +591,54 @@ impl Specimen {
             column: 1,
             message,
         })?;
-        Specimen::parse(&changed, path)
+        Source {
+            text: &changed,
+            file_text: &src,
+            overrides,
+            file: path,
+        }
+        .parse()
     }
 
     /// Parses and checks specimen text; `file` names it in errors.
     pub fn parse(src: &str, file: &Path) -> Result<Specimen, SpecError> {
-        let spec: Specimen = toml::from_str(src).map_err(|e| {
-            let (line, column) = e.span().map_or((1, 1), |s| line_col(src, s.start));
-            SpecError {
-                file: file.to_owned(),
-                line,
-                column,
-                message: e.message().to_string(),
-            }
-        })?;
-        spec.check().map_err(|(path, expected)| {
-            let (line, column) = line_col(src, locate(src, path));
-            SpecError {
-                file: file.to_owned(),
-                line,
-                column,
-                message: format!("`{path}`: expected {expected}"),
-            }
-        })?;
-        Ok(spec)
+        Source {
+            text: src,
+            file_text: src,
+            overrides: &[],
+            file,
+        }
+        .parse()
     }
 
-    fn check(&self) -> Result<(), (&'static str, String)> {
-        fn pos(v: f64, path: &'static str, what: &str) -> Result<(), (&'static str, String)> {
+    /// Checks the values once more after `--element-size` replaced the
+    /// file's.
+    pub fn with_element_size(mut self, mm: f64) -> Result<Specimen, String> {
+        self.analysis.element_size_mm = mm;
+        self.check().map_err(|(path, expected)| {
+            format!("--element-size {mm}: `{path}`: expected {expected}")
+        })?;
+        Ok(self)
+    }
+
+    fn check(&self) -> Result<(), Fault> {
+        fn pos(v: f64, path: &'static str, what: &str) -> Result<(), Fault> {
             if v.is_finite() && v > 0.0 {
                 Ok(())
             } else {
-                Err((path, format!("{what} (a positive number), found {v}")))
+                Err((
+                    path.into(),
+                    format!("{what} (a positive number), found {v}"),
+                ))
             }
         }
         let s = &self.section;
         pos(s.size_mm, "section.size_mm", "the diameter or width in mm")?;
         if !(s.clear_cover_mm >= 0.0) {
-            return Err(("section.clear_cover_mm", "a cover of 0 mm or more".into()));
+            return Err((
+                "section.clear_cover_mm".into(),
+                "a cover of 0 mm or more".into(),
+            ));
         }
         pos(
             self.column.height_m,
@@ -462,7 +652,7 @@ impl Specimen {
         }
         if !(c.poisson >= 0.0 && c.poisson < 0.5) {
             return Err((
-                "concrete.poisson",
+                "concrete.poisson".into(),
                 format!("a Poisson's ratio in [0, 0.5), found {}", c.poisson),
             ));
         }
@@ -488,7 +678,7 @@ impl Specimen {
         };
         if bad_count {
             return Err((
-                "longitudinal.count",
+                "longitudinal.count".into(),
                 format!(
                     "at least 3 bars (circular) or a multiple of 4 (square), found {}",
                     l.count
@@ -512,12 +702,15 @@ impl Specimen {
             "the yield strength in MPa",
         )?;
         if s.shape == Shape::Square && t.kind == TransverseKind::Spiral {
-            return Err(("transverse.kind", "\"hoops\" for a square section".into()));
+            return Err((
+                "transverse.kind".into(),
+                "\"hoops\" for a square section".into(),
+            ));
         }
         let inner = s.size_mm - 2.0 * (s.clear_cover_mm + t.bar_diameter_mm + l.bar_diameter_mm);
         if !(inner > 0.0) {
             return Err((
-                "section.clear_cover_mm",
+                "section.clear_cover_mm".into(),
                 "cover and bars that fit inside the section".into(),
             ));
         }
@@ -530,7 +723,7 @@ impl Specimen {
         };
         if pitch < l.bar_diameter_mm {
             return Err((
-                "longitudinal.count",
+                "longitudinal.count".into(),
                 format!(
                     "bars that fit side by side: {} bars of {} mm are {pitch:.1} mm apart, centre to centre",
                     l.count, l.bar_diameter_mm
@@ -540,7 +733,7 @@ impl Specimen {
         // Hoops sit at s/2, 3s/2, ... below the top (`bar_sets`): at least one must fit.
         if t.kind == TransverseKind::Hoops && t.spacing_mm / 2.0 >= self.column.height_m * 1000.0 {
             return Err((
-                "transverse.spacing_mm",
+                "transverse.spacing_mm".into(),
                 format!(
                     "a spacing that places at least one hoop (below twice the column's height, {} mm)",
                     2.0 * self.column.height_m * 1000.0
@@ -556,6 +749,16 @@ impl Specimen {
             self.steel.density_kg_m3,
             "steel.density_kg_m3",
             "the density in kg/m^3",
+        )?;
+        pos(
+            self.reference.longitudinal_ratio_pct,
+            "reference.longitudinal_ratio_pct",
+            "the longitudinal steel ratio in %",
+        )?;
+        pos(
+            self.reference.transverse_ratio_pct,
+            "reference.transverse_ratio_pct",
+            "the transverse steel ratio in %",
         )?;
         if let Some(t) = &self.reference.table_2_1 {
             for (v, path) in [
@@ -576,7 +779,7 @@ impl Specimen {
         let ld = &self.loading;
         if !(ld.axial_force_kn.is_finite() && ld.axial_force_kn >= 0.0) {
             return Err((
-                "loading.axial_force_kn",
+                "loading.axial_force_kn".into(),
                 "a compression of 0 kN or more".into(),
             ));
         }
@@ -590,14 +793,14 @@ impl Specimen {
         // The top starts untwisted: a first row [0, 0.05] would be read as [0, 0].
         if ld.twist.len() < 2 || ld.twist[0] != [0.0, 0.0] {
             return Err((
-                "loading.twist",
+                "loading.twist".into(),
                 "a table of at least two [time s, twist rad] rows starting at [0, 0]".into(),
             ));
         }
         for w in ld.twist.windows(2) {
             if !(w[1][0] > w[0][0] && w[1][0].is_finite() && w[1][1].is_finite()) {
                 return Err((
-                    "loading.twist",
+                    "loading.twist".into(),
                     "strictly increasing finite times and finite twists".into(),
                 ));
             }
@@ -608,54 +811,102 @@ impl Specimen {
             "analysis.element_size_mm",
             "the element size in mm",
         )?;
+        // The mesh rounds the section to whole cells (`Section::square`, `Section::circle`):
+        // below four across, a twisted section has no interior to carry its shear flow.
+        if a.element_size_mm * 4.0 > s.size_mm {
+            return Err((
+                "analysis.element_size_mm".into(),
+                format!(
+                    "at most a quarter of the section's {} mm (4 elements across), found {}",
+                    s.size_mm, a.element_size_mm
+                ),
+            ));
+        }
+        let across = s.size_mm / a.element_size_mm;
+        let elements = across * across * self.column.height_m * 1000.0 / a.element_size_mm;
+        if elements > MAX_ELEMENTS {
+            return Err((
+                "analysis.element_size_mm".into(),
+                format!(
+                    "a mesh of at most {MAX_ELEMENTS:.0} elements, found {} mm, which gives about {elements:.2e}",
+                    a.element_size_mm
+                ),
+            ));
+        }
         if !(a.hourglass_scale >= 0.0 && a.hourglass_scale.is_finite()) {
             return Err((
-                "analysis.hourglass_scale",
+                "analysis.hourglass_scale".into(),
                 "a finite scale of 0 or more".into(),
             ));
         }
         if !a.bulk_viscosity.iter().all(|b| *b >= 0.0 && b.is_finite()) {
             return Err((
-                "analysis.bulk_viscosity",
+                "analysis.bulk_viscosity".into(),
                 "[b1, b2], both finite and 0 or more".into(),
             ));
         }
         if !(a.dt_safety > 0.0 && a.dt_safety <= 1.0) {
-            return Err(("analysis.dt_safety", "a fraction in (0, 1]".into()));
+            return Err(("analysis.dt_safety".into(), "a fraction in (0, 1]".into()));
         }
         if let Some(m) = a.mass_scaling_dt_s {
             pos(m, "analysis.mass_scaling_dt_s", "a target time step in s")?;
         }
         if a.threads == Some(0) {
-            return Err(("analysis.threads", "at least one thread".into()));
+            return Err(("analysis.threads".into(), "at least one thread".into()));
         }
         if self.output.samples < 2 {
-            return Err(("output.samples", "at least 2 rows".into()));
+            return Err(("output.samples".into(), "at least 2 rows".into()));
         }
         if let Some(v) = self.output.vtk_every_s {
             pos(v, "output.vtk_every_s", "an interval in s")?;
         }
-        for st in &self.output.rebar_station {
+        for (i, st) in self.output.rebar_station.iter().enumerate() {
+            let at = |key: &str| Cow::Owned(format!("output.rebar_station.{i}.{key}"));
             if st.set != "longitudinal" && st.set != "transverse" {
                 return Err((
-                    "output.rebar_station",
-                    format!("set \"longitudinal\" or \"transverse\", found {:?}", st.set),
+                    at("set"),
+                    format!("\"longitudinal\" or \"transverse\", found {:?}", st.set),
                 ));
             }
             if !st.angle_deg.is_finite() {
                 return Err((
-                    "output.rebar_station",
-                    format!("a finite angle_deg, found {}", st.angle_deg),
+                    at("angle_deg"),
+                    format!("a finite angle in degrees, found {}", st.angle_deg),
                 ));
             }
             if !(st.z_m >= 0.0 && st.z_m <= self.column.height_m) {
                 return Err((
-                    "output.rebar_station",
-                    format!("z_m within the column height, found {}", st.z_m),
+                    at("z_m"),
+                    format!(
+                        "a height within the column's {} m, found {}",
+                        self.column.height_m, st.z_m
+                    ),
                 ));
             }
         }
         Ok(())
+    }
+
+    /// What to know before comparing a run with the file's column: where
+    /// the bar layout's steel ratios ([`Specimen::steel_ratios`]) differ by
+    /// more than 3% from the `[reference]` ratios (Table 1.1), as they do
+    /// when `--set` changes the bars or the file's layout is not the
+    /// column it names.
+    pub fn notes(&self) -> Vec<String> {
+        let (rl, rt) = self.steel_ratios();
+        let r = &self.reference;
+        [
+            ("longitudinal", 100.0 * rl, r.longitudinal_ratio_pct),
+            ("transverse", 100.0 * rt, r.transverse_ratio_pct),
+        ]
+        .into_iter()
+        .filter(|(_, layout, reference)| (layout / reference - 1.0).abs() > 0.03)
+        .map(|(set, layout, reference)| {
+            format!(
+                "the {set} bars give a steel ratio of {layout:.3}%, where [reference] says {reference}%"
+            )
+        })
+        .collect()
     }
 
     /// Element size, m.
@@ -1031,7 +1282,7 @@ mod tests {
             (
                 "angle_deg = 0.0".to_string(),
                 "angle_deg = nan".to_string(),
-                "a finite angle_deg",
+                "a finite angle in degrees",
             ),
             (
                 "count = 16".to_string(),
@@ -1052,6 +1303,23 @@ mod tests {
                 "bulk_viscosity = [0.06, 1.2]".to_string(),
                 "bulk_viscosity = [inf, 1.2]".to_string(),
                 "both finite and 0 or more",
+            ),
+            // One element across the section used to run as a 1-element mesh; 0.5 mm asked
+            // for 1.7e9 elements and failed only when allocating.
+            (
+                "element_size_mm = 25.0".to_string(),
+                "element_size_mm = 1e9".to_string(),
+                "at most a quarter of the section's 400 mm (4 elements across)",
+            ),
+            (
+                "element_size_mm = 25.0".to_string(),
+                "element_size_mm = 0.5".to_string(),
+                "a mesh of at most 5000000 elements, found 0.5 mm, which gives about 1.73e9",
+            ),
+            (
+                "transverse_ratio_pct = 0.79".to_string(),
+                "transverse_ratio_pct = 0.0".to_string(),
+                "the transverse steel ratio in % (a positive number)",
             ),
         ];
         for (from, to, expected) in cases {
@@ -1085,5 +1353,133 @@ mod tests {
             ];
             assert_eq!(got, want, "{}", p.display());
         }
+    }
+
+    /// The 1-based line of the first line of `src` containing `needle`.
+    fn line_of(src: &str, needle: &str) -> usize {
+        src.lines()
+            .position(|l| l.contains(needle))
+            .map(|i| i + 1)
+            .unwrap_or_else(|| panic!("{needle} is not in the text"))
+    }
+
+    /// A `--set` that adds a key inserts a line, which used to move every error below it one
+    /// line down; and an error in a value a `--set` gave pointed into the file as if the file
+    /// held it.
+    #[test]
+    fn override_errors_point_at_the_file_and_name_the_override() {
+        let tp91 = Path::new(env!("CARGO_MANIFEST_DIR")).join("../specimens/tp-91.toml");
+        let src = std::fs::read_to_string(&tp91).expect("read");
+        let file =
+            std::env::temp_dir().join(format!("hyst-spec-lines-{}.toml", std::process::id()));
+        std::fs::write(&file, src.replacen("samples = 1000", "samples = 1", 1)).expect("write");
+        let set = |pairs: &[(&str, &str)]| -> Vec<(String, String)> {
+            pairs
+                .iter()
+                .map(|(k, v)| (k.to_string(), v.to_string()))
+                .collect()
+        };
+        let added = ("concrete.elastic_modulus_mpa", "25000.0");
+        let plain = Specimen::parse(&src, &tp91).expect("tp-91");
+        assert_eq!(
+            plain.concrete.elastic_modulus_mpa, None,
+            "the key must be new"
+        );
+
+        // The file's own error, below the inserted line, at the file's line.
+        let e = Specimen::load_with(&file, &set(&[added])).expect_err("samples = 1");
+        assert_eq!(
+            (e.line, e.column),
+            (line_of(&src, "samples = 1000"), 11),
+            "{e}"
+        );
+        assert!(!e.message.contains("--set"), "{e}");
+
+        // An overridden value that fails a check: named, at the value it replaced.
+        std::fs::write(&file, &src).expect("write");
+        let e = Specimen::load_with(&file, &set(&[added, ("analysis.dt_safety", "5")]))
+            .expect_err("dt_safety 5");
+        assert_eq!(e.line, line_of(&src, "dt_safety = 0.9"), "{e}");
+        assert!(e.message.starts_with("--set analysis.dt_safety=5: "), "{e}");
+
+        // A value of the wrong type, found by the parser rather than the checks.
+        let e = Specimen::load_with(&file, &set(&[added, ("output.samples", "-1")]))
+            .expect_err("samples -1");
+        assert_eq!(e.line, line_of(&src, "samples = 1000"), "{e}");
+        assert!(e.message.starts_with("--set output.samples=-1: "), "{e}");
+
+        // A new key that fails: at the table it was added to.
+        let e = Specimen::load_with(&file, &set(&[("concrete.elastic_modulus_mpa", "-1")]))
+            .expect_err("E = -1");
+        assert_eq!(e.line, line_of(&src, "[concrete]"), "{e}");
+        assert!(
+            e.message.contains("--set concrete.elastic_modulus_mpa=-1"),
+            "{e}"
+        );
+        std::fs::remove_file(&file).ok();
+    }
+
+    /// Errors in the second of two `[[output.rebar_station]]` tables used to name the
+    /// first one's line.
+    #[test]
+    fn rebar_station_errors_name_the_station() {
+        let tp91 = Path::new(env!("CARGO_MANIFEST_DIR")).join("../specimens/tp-91.toml");
+        let src = std::fs::read_to_string(&tp91).expect("read");
+        let second = src.rfind("z_m = 0.675").expect("a second station");
+        let bad = format!("{}z_m = 9.0{}", &src[..second], &src[second + 11..]);
+        let e = Specimen::parse(&bad, Path::new("x.toml")).expect_err("z_m 9");
+        assert_eq!((e.line, e.column), (line_of(&bad, "z_m = 9.0"), 7), "{e}");
+        assert!(e.message.contains("`output.rebar_station.1.z_m`"), "{e}");
+        assert!(
+            e.message.contains("within the column's 1.35 m, found 9"),
+            "{e}"
+        );
+        let bad = src.replacen("set = \"longitudinal\"", "set = \"hoops\"", 1);
+        let e = Specimen::parse(&bad, Path::new("x.toml")).expect_err("set hoops");
+        assert_eq!(e.line, line_of(&bad, "set = \"hoops\""), "{e}");
+        assert!(e.message.contains("`output.rebar_station.0.set`"), "{e}");
+    }
+
+    /// An `[assumed]` entry must document a value the file gives; a misspelt key used to be
+    /// accepted, leaving the input it meant undocumented.
+    #[test]
+    fn assumed_entries_must_name_a_value_of_the_file() {
+        let tp91 = Path::new(env!("CARGO_MANIFEST_DIR")).join("../specimens/tp-91.toml");
+        let src = std::fs::read_to_string(&tp91).expect("read");
+        for key in ["transverse.knd", "transverse", "loading.twist.7"] {
+            let bad = src.replacen("\"transverse.kind\" =", &format!("\"{key}\" ="), 1);
+            let e = Specimen::parse(&bad, Path::new("x.toml")).expect_err(key);
+            assert_eq!(
+                (e.line, e.column),
+                (line_of(&bad, &format!("\"{key}\" =")), 1),
+                "{e}"
+            );
+            assert!(e.message.contains(&format!("[assumed] \"{key}\"")), "{e}");
+        }
+        // A key naming an element of an array is a value of the file.
+        let ok = src.replacen("\"transverse.kind\" =", "\"loading.twist.1\" =", 1);
+        Specimen::parse(&ok, Path::new("x.toml")).expect("an array element");
+    }
+
+    /// The five specimens' bars give their Table 1.1 ratios (no note); changing the bars says
+    /// that the run no longer models the column the `[reference]` describes.
+    #[test]
+    fn a_layout_unlike_the_reference_is_noted() {
+        for (p, s) in specimens() {
+            assert!(s.notes().is_empty(), "{}: {:?}", p.display(), s.notes());
+        }
+        let tp91 = Path::new(env!("CARGO_MANIFEST_DIR")).join("../specimens/tp-91.toml");
+        let set = vec![("transverse.spacing_mm".to_string(), "94".to_string())];
+        let s = Specimen::load_with(&tp91, &set).expect("spacing 94");
+        // Twice the spacing, half the ratio: 4 A_t / (b_c s) with A_t = pi 6.35^2 / 4 and
+        // b_c = 400 - 2 (27.5 + 6.35 / 2) mm.
+        let bc = 400.0 - 2.0 * (27.5 + 6.35 / 2.0);
+        let want = 100.0 * 4.0 * PI * 6.35 * 6.35 / 4.0 / (bc * 94.0);
+        assert_eq!(
+            s.notes(),
+            vec![format!(
+                "the transverse bars give a steel ratio of {want:.3}%, where [reference] says 0.79%"
+            )]
+        );
     }
 }
