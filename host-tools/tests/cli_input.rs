@@ -270,7 +270,10 @@ fn force_driven_simulate_names_the_right_file() {
     let bad = write("negative-xi.json", &with_xi(-0.5));
     let e = cli::err(hyst(&["simulate", &data, "--params", &bad]));
     assert!(
-        e.contains("negative-xi.json: invalid parameters: xi must not be negative"),
+        e.contains(&format!(
+            "{}: invalid parameters: xi must not be negative",
+            place(&bad, &with_xi(-0.5), "-0.5")
+        )),
         "{e}"
     );
     let good = write("xi.json", &with_xi(0.05));
@@ -389,4 +392,72 @@ fn parameter_units_are_checked_and_never_ignored() {
         "units-mm.json",
         r#"{"displacement": "mm", "force": "kN"}"#,
     )));
+}
+
+/// `path:line:column` of the first occurrence of `needle` in `text` (column in characters),
+/// found by searching the text: the place an error about that value must name.
+fn place(path: &str, text: &str, needle: &str) -> String {
+    let at = text.find(needle).expect("needle in text");
+    let line = text[..at].matches('\n').count() + 1;
+    let column = text[..at].rsplit('\n').next().unwrap().chars().count() + 1;
+    format!("{path}:{line}:{column}")
+}
+
+/// An error about a value of a parameter or PHM file names its line and column, as a syntax
+/// error does: before, it named the file alone, and in a file of two curves and a dozen
+/// coefficients the reader had to find the value by its name.
+#[test]
+fn errors_in_json_values_name_their_line_and_column() {
+    let bw = "{\n  \"model\": \"bw\",\n  \"k0\": 6.0,\n  \"alpha\": 5,\n  \"n\": 1.2, \"beta\": 2.0, \"gamma\": -1.0\n}\n";
+    let misspelt = bw
+        .replace("\"alpha\": 5", "\"alpha\": 0.5")
+        .replace("-1.0\n", "-1.0, \"dlta\": 1\n");
+    let phm = "{\n  \"model\": \"phm-torsion\",\n  \"primary\": {\n    \"positive\": [[0.21, 105.0], [1.45, 168.0], [1.0, 172.0], [8.5, 140.0]]\n  },\n  \"coefficients\": {\"eq4_a\": 0.7513,\n    \"cycle_band\": 0.05}\n}\n";
+    let band = phm
+        .replace("[1.0, 172.0]", "[4.0, 172.0]")
+        .replace("0.05}", "-5}");
+    let history = write("history.csv", "displacement (mm)\n0\n1\n2\n");
+    let twist = write("twist.csv", "twist (deg)\n0\n1\n2\n");
+    // (file, its text, a record it simulates, where the value starts, the error)
+    let cases = [
+        (
+            "alpha5.json",
+            bw.to_string(),
+            &history,
+            "5,",
+            "alpha must lie in [0, 1]",
+        ),
+        (
+            "dlta.json",
+            misspelt,
+            &history,
+            "1\n}",
+            "\"dlta\" is not a parameter",
+        ),
+        (
+            "point2.json",
+            phm.to_string(),
+            &twist,
+            "[1.0, 172.0]",
+            "positive primary curve, point 2: twists must increase",
+        ),
+        (
+            "band.json",
+            band,
+            &twist,
+            "-5}",
+            "cycle_band must lie in [0, 1]",
+        ),
+    ];
+    for (name, text, record, value, message) in cases {
+        let file = write(name, &text);
+        let want = format!("{}: {message}", place(&file, &text, value));
+        for verb in [
+            &["simulate", record, "--params", &file][..],
+            &["export", "--format", "rust", &file],
+        ] {
+            let e = cli::err(hyst(verb));
+            assert!(e.contains(&want), "{verb:?}: {e}");
+        }
+    }
 }

@@ -67,7 +67,8 @@ fn specs_and_parameter_files_know_the_registered_effect() {
         .build(file.spec(None).unwrap(), false)
         .unwrap_err()
         .to_string();
-    assert_eq!(err, "slip.json: slip_depth must lie in [0, 1]");
+    // Placed at the value: column 98 of the one line.
+    assert_eq!(err, "slip.json:1:98: slip_depth must lie in [0, 1]");
     assert!(
         hyst::model::register(&slip::SlipEffect).is_err(),
         "a name registers once"

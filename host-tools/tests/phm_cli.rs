@@ -264,7 +264,8 @@ fn errors_name_the_file_and_what_was_expected() {
     let h = write("h.csv", "twist (deg)\n0\n1\n");
     let e = err(hyst(&["simulate", &h, "--params", &bad_coef]));
     assert!(
-        e.contains("bad_coef.json: \"eq7\" is not a PHM coefficient"),
+        // Placed at the value: column 95 of the one line.
+        e.contains("bad_coef.json:1:95: \"eq7\" is not a PHM coefficient"),
         "{e}"
     );
 
@@ -301,7 +302,7 @@ fn errors_name_the_file_and_what_was_expected() {
         &bw,
     ]));
     assert!(
-        e.contains("bw.json: \"model\" is \"bw\": expected \"phm-torsion\""),
+        e.contains("bw.json:1:11: \"model\" is \"bw\": expected \"phm-torsion\""),
         "{e}"
     );
 

@@ -81,7 +81,7 @@ impl ForcingArgs {
             .ok_or_else(|| {
                 anyhow::anyhow!(
                     "{}: `fit.forcing` is {value}; expected \"linear\" or \"cubic\"",
-                    file.path.display()
+                    file.at(&["fit", "forcing"])
                 )
             })
     }

@@ -226,7 +226,7 @@ fn forced(
     let sim = exp
         .simulate(&params, &extras, xi, Control::default_for())
         .map_err(|e| match e {
-            SimError::Params(_) => anyhow!("{}: {e}", file.path.display()),
+            SimError::Params(p) => anyhow!("{}: {e}", file.at(&[p.field])),
             SimError::Step(..) => anyhow!("{src}: {e}"),
         })?;
     let time: Vec<f64> = (0..force.len()).map(|i| i as f64 * dt).collect();

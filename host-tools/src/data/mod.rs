@@ -72,6 +72,7 @@ pub mod cycles;
 mod error;
 pub mod history;
 pub mod json;
+pub mod json_place;
 mod read;
 mod record;
 pub mod residuals;

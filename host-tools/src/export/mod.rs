@@ -9,6 +9,7 @@ mod render;
 
 pub use render::{render, Format};
 
+use crate::data::json_place::JsonFile;
 use crate::model::{is_phm, ModelSpec, ParamFile, PhmFile, PHM_POINTS};
 use anyhow::{anyhow, bail, Context, Result};
 use hysteresis::bwbn::BwbnParams;
@@ -79,7 +80,7 @@ pub fn read(paths: &[PathBuf]) -> Result<Sources> {
             .with_context(|| format!("{}: cannot read", path.display()))?;
         let value = crate::data::unique_keys::parse_file(path, &text)?;
         let (stated, kind) = if is_phm(&value) {
-            let f = PhmFile::from_value(path, &value)?;
+            let f = PhmFile::from_json(JsonFile::new(path, Some(&text)), &value)?;
             phm.push(f.params);
             (f.units, ModelKind::Phm)
         } else {

@@ -14,6 +14,7 @@
 //! ```
 
 use super::{Extras, ModelSpec};
+use crate::data::json_place::JsonFile;
 use crate::data::{Quantity, Unit};
 use anyhow::{anyhow, bail, Context, Result};
 use hysteresis::bwbn::{BwbnParams, ENERGY_LIMIT};
@@ -39,16 +40,18 @@ pub struct ParamFile {
     pub units: Option<Map<String, Value>>,
     /// The `fit` object, if present.
     pub fit: Option<Value>,
+    /// The file's text, to place errors about its values.
+    text: String,
 }
 
 /// The `units` object: `displacement` a length unit and `force` a force unit, both given,
 /// nothing else.
-fn checked_units(path: &Path, u: Map<String, Value>) -> Result<Map<String, Value>> {
+fn checked_units(file: JsonFile, u: Map<String, Value>) -> Result<Map<String, Value>> {
     for key in u.keys() {
         if key != "displacement" && key != "force" {
             bail!(
                 "{}: \"units\" has a key \"{key}\"; expected \"displacement\" and \"force\"",
-                path.display()
+                file.at(&["units", key])
             );
         }
     }
@@ -59,14 +62,14 @@ fn checked_units(path: &Path, u: Map<String, Value>) -> Result<Map<String, Value
         let text = u.get(key).and_then(Value::as_str).ok_or_else(|| {
             anyhow!(
                 "{}: \"units\" needs \"{key}\" as a string ({})",
-                path.display(),
+                file.at(&["units", key]),
                 quantity.known_symbols()
             )
         })?;
         if Unit::parse(text).map(Unit::quantity) != Some(quantity) {
             bail!(
                 "{}: \"units\".\"{key}\" is '{text}'; expected a {quantity} unit ({})",
-                path.display(),
+                file.at(&["units", key]),
                 quantity.known_symbols()
             );
         }
@@ -90,7 +93,7 @@ impl ParamFile {
             if d != "mm" || f != "kN" {
                 bail!(
                     "{}: parameters in {} and {}, but hyst simulates in mm and kN: give them in mm and kN (a device table takes other units from `hyst export`)",
-                    path.display(),
+                    file.at(&["units"]),
                     d.as_str().unwrap_or_default(),
                     f.as_str().unwrap_or_default()
                 );
@@ -102,6 +105,7 @@ impl ParamFile {
     /// Parses the text of a parameter file.
     pub fn parse(path: &Path, text: &str) -> Result<Self> {
         let value: Value = crate::data::unique_keys::parse_file(path, text)?;
+        let at = JsonFile::new(path, Some(text));
         let Value::Object(map) = value else {
             bail!(
                 "{}: expected a JSON object of parameters, found {}",
@@ -111,6 +115,7 @@ impl ParamFile {
         };
         let mut file = ParamFile {
             path: path.to_path_buf(),
+            text: text.to_string(),
             ..Default::default()
         };
         for (key, v) in map {
@@ -118,28 +123,28 @@ impl ParamFile {
                 ("model", Value::String(s)) => {
                     file.model = Some(
                         ModelSpec::parse(&s)
-                            .with_context(|| format!("{}: key \"model\"", path.display()))?,
+                            .with_context(|| format!("{}: key \"model\"", at.at(&["model"])))?,
                     )
                 }
-                ("units", Value::Object(u)) => file.units = Some(checked_units(path, u)?),
+                ("units", Value::Object(u)) => file.units = Some(checked_units(at, u)?),
                 ("fit", v) => file.fit = Some(v),
                 (k, v) if META.contains(&k) => bail!(
                     "{}: key \"{k}\" has the wrong type ({})",
-                    path.display(),
+                    at.at(&[k]),
                     kind(&v)
                 ),
                 (_, Value::Number(n)) => {
                     let x = n.as_f64().filter(|x| x.is_finite()).ok_or_else(|| {
                         anyhow!(
                             "{}: parameter \"{key}\" is not a finite number",
-                            path.display()
+                            at.at(&[&key])
                         )
                     })?;
                     file.values.insert(key, x);
                 }
                 (_, v) => bail!(
                     "{}: parameter \"{key}\" must be a number, found {}",
-                    path.display(),
+                    at.at(&[&key]),
                     kind(&v)
                 ),
             }
@@ -180,12 +185,19 @@ impl ParamFile {
                 };
                 bail!(
                     "{}: \"{name}\" is not a parameter of model {spec}{hint}",
-                    self.path.display()
+                    self.at(&[name])
                 );
             }
         }
         spec.build(|n| self.values.get(n).copied())
-            .map_err(|e| anyhow!("{}: {e}", self.path.display()))
+            .map_err(|e| anyhow!("{}: {e}", self.at(&[e.field])))
+    }
+
+    /// `path:line:column` of the value at the key path `keys` in the file
+    /// (`["alpha"]`, `["fit", "forcing"]`), or its path alone if the file
+    /// does not give it.
+    pub fn at(&self, keys: &[&str]) -> String {
+        JsonFile::new(&self.path, Some(&self.text)).at(keys)
     }
 }
 
@@ -284,7 +296,7 @@ mod tests {
             "{m}"
         );
         let m = msg(r#"{"k0": 6, "alpha": 1.2, "n": 1.2, "beta": 2, "gamma": -1}"#);
-        assert_eq!(m, "p.json: alpha must lie in [0, 1]");
+        assert_eq!(m, "p.json:1:20: alpha must lie in [0, 1]");
         let m = msg(r#"{"k0": 6, "alpha": 0.2, "n": 1.2, "beta": 2}"#);
         assert_eq!(m, "p.json: gamma is required but missing");
         let m = parse(r#"{"model": "bwbn"}"#)

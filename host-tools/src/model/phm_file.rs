@@ -20,9 +20,10 @@
 //! runs. `hyst fit` adds a `fit` object (how the file was fitted), which the
 //! reader skips.
 
+use crate::data::json_place::JsonFile;
 use crate::data::{Quantity, Unit};
 use anyhow::{anyhow, bail, Context, Result};
-use hysteresis::phm::{Direction, Phm, PhmParams, SPECS};
+use hysteresis::phm::{BackboneRule, Direction, Phm, PhmError, PhmParams, SPECS};
 use hysteresis::Element;
 use serde_json::{json, Map, Value};
 use std::path::{Path, PathBuf};
@@ -47,12 +48,12 @@ pub struct PhmFile {
     pub data_units: (Unit, Unit),
 }
 
-fn unit_of(path: &Path, key: &str, text: &str, q: Quantity) -> Result<Unit> {
+fn unit_of(file: JsonFile, key: &str, text: &str, q: Quantity) -> Result<Unit> {
     match Unit::parse(text) {
         Some(u) if u.quantity() == q => Ok(u),
         _ => bail!(
             "{}: units.{key} is '{text}': expected an {q} unit ({})",
-            path.display(),
+            file.at(&["units", key]),
             q.known_symbols()
         ),
     }
@@ -63,22 +64,23 @@ pub fn is_phm(value: &Value) -> bool {
     value.get("model").and_then(Value::as_str) == Some(PHM_MODEL)
 }
 
-fn points(path: &Path, key: &str, v: &Value) -> Result<Vec<[f64; 2]>> {
-    let bad = || {
+fn points(file: JsonFile, key: &str, v: &Value) -> Result<Vec<[f64; 2]>> {
+    let bad = |at: &[&str]| {
         anyhow!(
             "{}: primary.{key} must be an array of [twist, torque] pairs of finite numbers",
-            path.display()
+            file.at(at)
         )
     };
     v.as_array()
-        .ok_or_else(bad)?
+        .ok_or_else(|| bad(&["primary", key]))?
         .iter()
-        .map(|p| match p.as_array().map(Vec::as_slice) {
+        .enumerate()
+        .map(|(i, p)| match p.as_array().map(Vec::as_slice) {
             Some([x, y]) => match (x.as_f64(), y.as_f64()) {
                 (Some(x), Some(y)) if x.is_finite() && y.is_finite() => Ok([x, y]),
-                _ => Err(bad()),
+                _ => Err(bad(&["primary", key, &i.to_string()])),
             },
-            _ => Err(bad()),
+            _ => Err(bad(&["primary", key, &i.to_string()])),
         })
         .collect()
 }
@@ -90,18 +92,25 @@ impl PhmFile {
         let text = std::fs::read_to_string(path)
             .with_context(|| format!("{}: cannot read", path.display()))?;
         let value: Value = crate::data::unique_keys::parse_file(path, &text)?;
-        Self::from_value(path, &value)
+        Self::from_json(JsonFile::new(path, Some(&text)), &value)
     }
 
-    /// Validates a parsed PHM file.
+    /// Validates a PHM file built in memory; its errors name `path` alone.
     pub fn from_value(path: &Path, value: &Value) -> Result<Self> {
+        Self::from_json(JsonFile::new(path, None), value)
+    }
+
+    /// Validates a parsed PHM file; its errors name the line and column of
+    /// the value they are about where `file` has the text.
+    pub fn from_json(file: JsonFile, value: &Value) -> Result<Self> {
+        let path = file.path();
         let Some(map) = value.as_object() else {
             bail!("{}: expected a JSON object", path.display());
         };
         if let Some(m) = map.get("model").filter(|_| !is_phm(value)) {
             bail!(
                 "{}: \"model\" is {m}: expected \"{PHM_MODEL}\" in a PHM file",
-                path.display()
+                file.at(&["model"])
             );
         }
         let mut positive = None;
@@ -117,7 +126,7 @@ impl PhmFile {
                     if v.as_u64() != Some(16) {
                         bail!(
                             "{}: \"memory\" must be 16, the inner-cycle depth the host uses",
-                            path.display()
+                            file.at(&["memory"])
                         );
                     }
                 }
@@ -128,55 +137,58 @@ impl PhmFile {
                     {
                         bail!(
                             "{}: \"units\" has a key \"{other}\"; expected \"twist\" and \"torque\"",
-                            path.display()
+                            file.at(&["units", other])
                         );
                     }
                     let get = |k: &str| v.get(k).and_then(Value::as_str).map(str::to_string);
                     match (get("twist"), get("torque")) {
                         (Some(t), Some(m)) => {
                             data_units = (
-                                unit_of(path, "twist", &t, Quantity::Angle)?,
-                                unit_of(path, "torque", &m, Quantity::Torque)?,
+                                unit_of(file, "twist", &t, Quantity::Angle)?,
+                                unit_of(file, "torque", &m, Quantity::Torque)?,
                             );
                             units = Some((t, m));
                         }
                         _ => bail!(
                             "{}: \"units\" must be {{\"twist\": ..., \"torque\": ...}}",
-                            path.display()
+                            file.at(&["units"])
                         ),
                     }
                 }
                 "primary" => {
                     let Some(p) = v.as_object() else {
-                        bail!("{}: \"primary\" must be an object", path.display());
+                        bail!("{}: \"primary\" must be an object", file.at(&["primary"]));
                     };
                     for (k, curve) in p {
                         match k.as_str() {
-                            "positive" => positive = Some(points(path, k, curve)?),
-                            "negative" => negative = Some(points(path, k, curve)?),
+                            "positive" => positive = Some(points(file, k, curve)?),
+                            "negative" => negative = Some(points(file, k, curve)?),
                             other => bail!(
                                 "{}: primary.{other}: expected \"positive\" or \"negative\"",
-                                path.display()
+                                file.at(&["primary", other])
                             ),
                         }
                     }
                 }
                 "coefficients" => {
                     let Some(c) = v.as_object() else {
-                        bail!("{}: \"coefficients\" must be an object", path.display());
+                        bail!(
+                            "{}: \"coefficients\" must be an object",
+                            file.at(&["coefficients"])
+                        );
                     };
                     for (name, x) in c {
                         if !SPECS.iter().any(|s| s.name == name) {
                             bail!(
                                 "{}: \"{name}\" is not a PHM coefficient; known: {}",
-                                path.display(),
+                                file.at(&["coefficients", name]),
                                 SPECS.iter().map(|s| s.name).collect::<Vec<_>>().join(", ")
                             );
                         }
                         if !x.as_f64().is_some_and(f64::is_finite) {
                             bail!(
                                 "{}: coefficient \"{name}\" is not a finite number",
-                                path.display()
+                                file.at(&["coefficients", name])
                             );
                         }
                     }
@@ -184,12 +196,12 @@ impl PhmFile {
                 }
                 other => bail!(
                     "{}: unknown key \"{other}\" in a PHM file (model, units, primary, coefficients, memory, fit)",
-                    path.display()
+                    file.at(&[other])
                 ),
             }
         }
-        let positive =
-            positive.ok_or_else(|| anyhow!("{}: primary.positive is missing", path.display()))?;
+        let positive = positive
+            .ok_or_else(|| anyhow!("{}: primary.positive is missing", file.at(&["primary"])))?;
         for (side, curve) in [
             ("positive", Some(&positive)),
             ("negative", negative.as_ref()),
@@ -197,7 +209,7 @@ impl PhmFile {
             if let Some(c) = curve.filter(|c| c.len() > PHM_POINTS) {
                 bail!(
                     "{}: primary.{side} has {} points; a curve here has at most {PHM_POINTS}",
-                    path.display(),
+                    file.at(&["primary", side]),
                     c.len()
                 );
             }
@@ -206,7 +218,26 @@ impl PhmFile {
         let params = PhmParams::from_named(&positive, &negative, |name| {
             coefficients.get(name).and_then(Value::as_f64)
         })
-        .map_err(|e| anyhow!("{}: {e}", path.display()))?;
+        .map_err(|e| {
+            let point;
+            let at: Vec<&str> = match &e {
+                PhmError::Backbone(b) => {
+                    let side = match b.direction {
+                        Direction::Positive => "positive",
+                        Direction::Negative => "negative",
+                    };
+                    point = b.point.to_string();
+                    match b.rule {
+                        BackboneRule::TooFewPoints | BackboneRule::TooManyPoints => {
+                            vec!["primary", side]
+                        }
+                        _ => vec!["primary", side, &point],
+                    }
+                }
+                PhmError::Coefficient(c) => vec!["coefficients", c.field],
+            };
+            anyhow!("{}: {e}", file.at(&at))
+        })?;
         Ok(PhmFile {
             path: path.to_path_buf(),
             params,
