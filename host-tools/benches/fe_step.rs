@@ -29,7 +29,7 @@ fn solver(threads: usize) -> Solver<Elastic, ElasticBar> {
         vec![(0.0, 0.0), (1e-3, 1e-4)],
         hyst::fe::history::Interpolation::Linear,
     ));
-    let mut s = Solver::new(model, controls, threads);
+    let mut s = Solver::new(model, controls, threads).expect("a thread pool");
     for _ in 0..20 {
         s.step();
     }

@@ -38,7 +38,7 @@ fn main() {
         vec![(0.0, 0.0), (1e-3, 1e-4)],
         Interpolation::Linear,
     ));
-    let mut s = Solver::new(model, controls, threads);
+    let mut s = Solver::new(model, controls, threads).expect("a thread pool");
     let start = std::time::Instant::now();
     for _ in 0..steps {
         s.step();

@@ -57,7 +57,7 @@ fn ramp(
         vec![(0.0, 0.0), (ramp, amp)],
         Interpolation::SmoothStep,
     ));
-    let mut s = Solver::new(model, controls, threads);
+    let mut s = Solver::new(model, controls, threads).expect("a thread pool");
     let mut trace = EnergyTrace::default();
     let (mut sxy, mut sxx) = (0.0, 0.0);
     while s.t < 1.2 * ramp {
@@ -265,7 +265,8 @@ fn patch_test_linear_field_gives_uniform_stress_and_no_interior_force() {
         },
     );
     let dt = model.dt();
-    let mut s = Solver::new(model, std::array::from_fn(|_| Control::free()), 1);
+    let mut s =
+        Solver::new(model, std::array::from_fn(|_| Control::free()), 1).expect("a thread pool");
     let a = [
         [1e-4, 2e-5, -3e-5],
         [4e-5, -2e-4, 1e-5],
@@ -396,7 +397,7 @@ fn one_and_two_threads_give_bit_identical_results() {
             vec![(0.0, 0.0), (1e-3, -1e5)],
             Interpolation::SmoothStep,
         ));
-        let mut s = Solver::new(model, controls, threads);
+        let mut s = Solver::new(model, controls, threads).expect("a thread pool");
         for _ in 0..300 {
             s.step();
         }

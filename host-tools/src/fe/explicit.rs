@@ -150,8 +150,13 @@ pub struct Solver<M: SolidMaterial, B: BarMaterial> {
 }
 
 impl<M: SolidMaterial, B: BarMaterial> Solver<M, B> {
-    /// A solver at rest at `t = 0`, running on `threads` threads.
-    pub fn new(model: Model<M, B>, controls: [Control; 6], threads: usize) -> Self {
+    /// A solver at rest at `t = 0`, running on `threads` threads; an error
+    /// if the system cannot start them (never fewer threads than asked).
+    pub fn new(
+        model: Model<M, B>,
+        controls: [Control; 6],
+        threads: usize,
+    ) -> Result<Self, rayon::ThreadPoolBuildError> {
         let n = model.mesh.nodes.len();
         let x = model.mesh.nodes.clone();
         let mut inv_mass: Vec<f64> = model.mass.iter().map(|m| 1.0 / m).collect();
@@ -174,14 +179,8 @@ impl<M: SolidMaterial, B: BarMaterial> Solver<M, B> {
         let np = model.embedding.points.len();
         let pool = rayon::ThreadPoolBuilder::new()
             .num_threads(threads.max(1))
-            .build()
-            .unwrap_or_else(|_| {
-                rayon::ThreadPoolBuilder::new()
-                    .num_threads(1)
-                    .build()
-                    .unwrap_or_else(|e| panic!("no thread pool: {e}"))
-            });
-        Solver {
+            .build()?;
+        Ok(Solver {
             hex_f: vec![[0.0; 3]; n_el_slots],
             hex_e: vec![HexEnergy::default(); model.batches.len().div_ceil(BATCH_CHUNK)],
             truss_f: vec![[0.0; 3]; 2 * nt],
@@ -213,7 +212,7 @@ impl<M: SolidMaterial, B: BarMaterial> Solver<M, B> {
             steps: 0,
             energy: Energies::default(),
             pool,
-        }
+        })
     }
 
     /// Advances one time step.

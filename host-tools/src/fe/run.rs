@@ -206,7 +206,8 @@ pub fn run<M: SolidMaterial, B: BarMaterial>(
         .output
         .vtk_every_s
         .map(|v| ((v / dt).round() as u64).max(1));
-    let mut s = Solver::new(model, spec.controls(), threads);
+    let mut s = Solver::new(model, spec.controls(), threads)
+        .with_context(|| format!("starting {threads} worker threads"))?;
     let stations = output::resolve_stations(&s, &spec.output.rebar_station);
     let cut = Cut::mid_height(
         &s.model.mesh,
