@@ -329,18 +329,20 @@ fn line_col(src: &str, offset: usize) -> (usize, usize) {
 /// The specimen text with each `key = value` override applied (see
 /// [`Specimen::load_with`]); the comments and layout of the file are kept,
 /// so errors found later still point at the right lines.
-fn apply_overrides(src: &str, overrides: &[(String, String)]) -> Result<String, String> {
-    let mut doc: toml_edit::DocumentMut = src
-        .parse()
-        .map_err(|e: toml_edit::TomlError| e.message().to_string())?;
+fn apply_overrides(src: &str, overrides: &[(String, String)]) -> Result<String, (usize, String)> {
+    let mut doc: toml_edit::DocumentMut = src.parse().map_err(|e: toml_edit::TomlError| {
+        (e.span().map_or(0, |s| s.start), e.message().to_string())
+    })?;
     for (key, value) in overrides {
+        // Placed at the value the override would replace, or the deepest table on its path.
+        let refuse = |why: String| (locate(src, key), format!("--set {key}={value}: {why}"));
         let parsed: toml_edit::Value = value
             .parse()
-            .map_err(|_| format!("--set {key}={value}: `{value}` is not a TOML value"))?;
+            .map_err(|_| refuse(format!("`{value}` is not a TOML value")))?;
         let mut segments: Vec<&str> = key.split('.').collect();
         let Some(last) = segments.pop().filter(|s| !s.is_empty()) else {
-            return Err(format!(
-                "--set {key}={value}: expected a dotted key such as loading.axial_force_kn"
+            return Err(refuse(
+                "expected a dotted key such as loading.axial_force_kn".into(),
             ));
         };
         let mut table = doc.as_table_mut();
@@ -348,7 +350,7 @@ fn apply_overrides(src: &str, overrides: &[(String, String)]) -> Result<String, 
             table = table
                 .get_mut(seg)
                 .and_then(|item| item.as_table_mut())
-                .ok_or_else(|| format!("--set {key}={value}: the file has no table `{seg}`"))?;
+                .ok_or_else(|| refuse(format!("the file has no table `{seg}`")))?;
         }
         let keep = table
             .get(last)
@@ -585,11 +587,14 @@ impl Specimen {
             return Specimen::load(path);
         }
         let src = read_source(path)?;
-        let changed = apply_overrides(&src, overrides).map_err(|message| SpecError {
-            file: path.to_owned(),
-            line: 1,
-            column: 1,
-            message,
+        let changed = apply_overrides(&src, overrides).map_err(|(at, message)| {
+            let (line, column) = line_col(&src, at);
+            SpecError {
+                file: path.to_owned(),
+                line,
+                column,
+                message,
+            }
         })?;
         Source {
             text: &changed,
@@ -1158,6 +1163,15 @@ mod tests {
         assert!(e.message.contains("no table `hoops`"), "{e}");
         let e = Specimen::load_with(path, &set("transverse.spacing_mm", "9 4")).unwrap_err();
         assert!(e.message.contains("not a TOML value"), "{e}");
+        // At the value it would have replaced (it used to be 1:1).
+        assert_eq!(e.line, line_of(&src, "spacing_mm = "), "{e}");
+        // A file that is not TOML keeps its own error place under an override.
+        let file =
+            std::env::temp_dir().join(format!("hyst-spec-syntax-{}.toml", std::process::id()));
+        std::fs::write(&file, src.replacen("poisson = 0.2", "poisson = = 0.2", 1)).unwrap();
+        let e = Specimen::load_with(&file, &set("transverse.spacing_mm", "94")).unwrap_err();
+        assert_eq!(e.line, line_of(&src, "poisson = 0.2"), "{e}");
+        std::fs::remove_file(&file).ok();
     }
 
     #[test]
