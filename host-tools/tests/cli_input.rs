@@ -394,12 +394,12 @@ fn parameter_units_are_checked_and_never_ignored() {
     )));
 }
 
-/// `path:line:column` of the first occurrence of `needle` in `text` (column in characters),
+/// `path:line:column` of the first occurrence of `needle` in `text` (column in bytes),
 /// found by searching the text: the place an error about that value must name.
 fn place(path: &str, text: &str, needle: &str) -> String {
     let at = text.find(needle).expect("needle in text");
     let line = text[..at].matches('\n').count() + 1;
-    let column = text[..at].rsplit('\n').next().unwrap().chars().count() + 1;
+    let column = text[..at].rsplit('\n').next().unwrap().len() + 1;
     format!("{path}:{line}:{column}")
 }
 

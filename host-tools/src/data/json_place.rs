@@ -47,8 +47,9 @@ impl<'a> JsonFile<'a> {
     }
 }
 
-/// Line and column (both from 1, the column in characters) where the value at the key path
-/// `keys` starts in the JSON `text`; `None` if the text has no such value or is not JSON.
+/// Line and column (both from 1; the column in bytes, as serde_json counts it in syntax errors)
+/// where the value at the key path `keys` starts in the JSON `text`; `None` if the text has no
+/// such value or is not JSON.
 pub fn locate(text: &str, keys: &[&str]) -> Option<(usize, usize)> {
     let mut scan = Scan {
         text,
@@ -58,7 +59,7 @@ pub fn locate(text: &str, keys: &[&str]) -> Option<(usize, usize)> {
     let start = scan.find(keys)?;
     let before = &text[..start];
     let line = before.matches('\n').count() + 1;
-    let column = before.rsplit('\n').next().map_or(0, |l| l.chars().count()) + 1;
+    let column = before.rsplit('\n').next().map_or(0, str::len) + 1;
     Some((line, column))
 }
 
@@ -173,6 +174,10 @@ impl Scan<'_> {
                     self.skip()?;
                     self.expect(b',')?;
                 }
+                self.space();
+                if self.peek() == Some(b']') {
+                    return None;
+                }
                 self.find(rest)
             }
             _ => None,
@@ -201,13 +206,7 @@ mod tests {
         ];
         for (keys, starts) in cases {
             let (line, column) = locate(text, keys).unwrap_or_else(|| panic!("{keys:?}"));
-            let rest: String = text
-                .lines()
-                .nth(line - 1)
-                .expect("line")
-                .chars()
-                .skip(column - 1)
-                .collect();
+            let rest = &text.lines().nth(line - 1).expect("line")[column - 1..];
             assert!(rest.starts_with(starts), "{keys:?}: {rest}");
         }
         assert_eq!(locate(text, &["d"]), Some((2, 7)));
@@ -222,5 +221,9 @@ mod tests {
         }
         assert_eq!(locate("{\"a\": ", &["a", "b"]), None);
         assert_eq!(locate("[1, 2", &["5"]), None);
+        assert_eq!(locate("{\"a\": []}", &["a", "0"]), None);
+        assert_eq!(locate("{\"a\": [5 ]}", &["a", "1"]), None);
+        // Columns count bytes, as serde_json's syntax errors do: "é" is two.
+        assert_eq!(locate("{\"é\": 1}", &["é"]), Some((1, 8)));
     }
 }
