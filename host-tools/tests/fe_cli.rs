@@ -309,11 +309,38 @@ fn unusable_mesh_sizes_and_thread_counts_are_refused() {
         "{e}"
     );
     let e = err(hyst(&["fe", &tp91, "--threads", "100000"]));
-    assert!(e.contains("--threads: expected 1 to "), "{e}");
+    assert!(
+        e.contains("--threads 100000: `analysis.threads`: expected 1 to "),
+        "{e}"
+    );
     assert!(e.contains("found 100000"), "{e}");
     let e = err(hyst(&["fe", &tp91, "--set", "analysis.threads=100000"]));
     assert!(
-        e.contains("analysis.threads of the specimen file: expected 1 to "),
+        e.contains("--set analysis.threads=100000: `analysis.threads`: expected 1 to "),
         "{e}"
+    );
+    // The options are checked with the file's values, not after them: a file whose own
+    // element size is too fine for the limit runs with a coarser --element-size.
+    let fine = tmp("fine.toml");
+    let text = std::fs::read_to_string(&tp91).unwrap();
+    std::fs::write(
+        &fine,
+        text.replacen("element_size_mm = 25.0", "element_size_mm = 2.0", 1),
+    )
+    .unwrap();
+    let fine = fine.to_str().unwrap();
+    let e = err(hyst(&["fe", fine]));
+    assert!(e.contains("a mesh of at most 5000000 elements"), "{e}");
+    let e = err(hyst(&[
+        "fe",
+        fine,
+        "--element-size",
+        "25",
+        "--threads",
+        "0",
+    ]));
+    assert!(
+        e.contains("--threads 0: `analysis.threads`: expected 1 to "),
+        "the element size passed: {e}"
     );
 }

@@ -6,7 +6,7 @@ use crate::fe::material::Elastic;
 use crate::fe::output;
 use crate::fe::run::{run, Progress, RunOptions, Summary};
 use crate::fe::section::SHEAR_FLOW_SHARE;
-use crate::fe::specimen::Specimen;
+use crate::fe::specimen::{Override, Specimen};
 use anyhow::Context;
 use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
@@ -61,7 +61,32 @@ fn parse_override(s: &str) -> Result<(String, String), String> {
 /// Runs the analysis. Ctrl-C stops it after the current step, keeping the
 /// files written so far, and still prints the summary.
 pub fn run_fe(args: FeArgs) -> anyhow::Result<()> {
-    let spec = Specimen::load_with(&args.specimen, &args.overrides)?;
+    // The two options are overrides too: checked with the file's other values, and named in
+    // its errors as given.
+    let mut overrides: Vec<Override> = args
+        .overrides
+        .iter()
+        .map(|(k, v)| Override::set(k, v))
+        .collect();
+    if let Some(h) = args.element_size {
+        overrides.push(Override {
+            key: "analysis.element_size_mm".into(),
+            value: if h.is_nan() {
+                "nan".into()
+            } else {
+                format!("{h:?}")
+            },
+            given: format!("--element-size {h}"),
+        });
+    }
+    if let Some(t) = args.threads {
+        overrides.push(Override {
+            key: "analysis.threads".into(),
+            value: t.to_string(),
+            given: format!("--threads {t}"),
+        });
+    }
+    let spec = Specimen::load_with(&args.specimen, &overrides)?;
     for note in spec.notes() {
         eprintln!("note: {note}");
     }
@@ -75,8 +100,8 @@ pub fn run_fe(args: FeArgs) -> anyhow::Result<()> {
     );
     let opts = RunOptions {
         out: args.out.clone(),
-        threads: args.threads,
-        element_size_mm: args.element_size,
+        threads: None,
+        element_size_mm: None,
     };
     let show = |p: &Progress| {
         bar.set_length(p.steps);

@@ -284,6 +284,15 @@ pub struct Specimen {
 /// when the file is read rather than failing to allocate after minutes.
 const MAX_ELEMENTS: f64 = 5e6;
 
+/// The most worker threads a run may ask for on this machine, and the
+/// machine's hardware threads. Each step ends at a barrier for all threads:
+/// past the hardware threads they only take turns (3,000 threads ran a
+/// 0.01 s test run in 34 s, two in 0.01 s).
+pub fn thread_limit() -> (usize, usize) {
+    let hardware = std::thread::available_parallelism().map_or(1, |n| n.get());
+    (4 * hardware, hardware)
+}
+
 /// A value [`Specimen::check`] refuses: its dotted key path (numbers index
 /// arrays) and what was expected.
 type Fault = (Cow<'static, str>, String);
@@ -326,16 +335,42 @@ fn line_col(src: &str, offset: usize) -> (usize, usize) {
     (line, col)
 }
 
-/// The specimen text with each `key = value` override applied (see
+/// A value of a specimen file replaced for one run (see
+/// [`Specimen::load_with`]), and how it was given, which errors name.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Override {
+    /// Dotted key: `loading.axial_force_kn`; a number picks one of an array
+    /// of tables, `output.rebar_station.1.z_m`.
+    pub key: String,
+    /// The new value, as TOML.
+    pub value: String,
+    /// How it was given: `--set KEY=VALUE`, or an option such as
+    /// `--element-size 25`.
+    pub given: String,
+}
+
+impl Override {
+    /// The override `--set key=value`.
+    pub fn set(key: &str, value: &str) -> Override {
+        Override {
+            key: key.to_string(),
+            value: value.to_string(),
+            given: format!("--set {key}={value}"),
+        }
+    }
+}
+
+/// The specimen text with each override applied (see
 /// [`Specimen::load_with`]); the comments and layout of the file are kept,
 /// so errors found later still point at the right lines.
-fn apply_overrides(src: &str, overrides: &[(String, String)]) -> Result<String, (usize, String)> {
+fn apply_overrides(src: &str, overrides: &[Override]) -> Result<String, (usize, String)> {
     let mut doc: toml_edit::DocumentMut = src.parse().map_err(|e: toml_edit::TomlError| {
         (e.span().map_or(0, |s| s.start), e.message().to_string())
     })?;
-    for (key, value) in overrides {
+    for o in overrides {
+        let (key, value) = (&o.key, &o.value);
         // Placed at the value the override would replace, or the deepest table on its path.
-        let refuse = |why: String| (locate(src, key), format!("--set {key}={value}: {why}"));
+        let refuse = |why: String| (locate(src, key), format!("{}: {why}", o.given));
         let parsed: toml_edit::Value = value
             .parse()
             .map_err(|_| refuse(format!("`{value}` is not a TOML value")))?;
@@ -345,13 +380,19 @@ fn apply_overrides(src: &str, overrides: &[(String, String)]) -> Result<String, 
                 "expected a dotted key such as loading.axial_force_kn".into(),
             ));
         };
-        let mut table = doc.as_table_mut();
+        let mut item = doc.as_item_mut();
         for seg in &segments {
-            table = table
-                .get_mut(seg)
-                .and_then(|item| item.as_table_mut())
+            let next = match seg.parse::<usize>() {
+                Ok(i) => item.get_mut(i),
+                Err(_) => item.get_mut(seg),
+            };
+            item = next
+                .filter(|n| n.is_table_like() || n.is_array_of_tables())
                 .ok_or_else(|| refuse(format!("the file has no table `{seg}`")))?;
         }
+        let Some(table) = item.as_table_like_mut() else {
+            return Err(refuse(format!("the file has no table for `{last}`")));
+        };
         let keep = table
             .get(last)
             .and_then(|item| item.as_value())
@@ -396,7 +437,7 @@ fn locate(src: &str, path: &str) -> usize {
 struct Source<'a> {
     text: &'a str,
     file_text: &'a str,
-    overrides: &'a [(String, String)],
+    overrides: &'a [Override],
     file: &'a Path,
 }
 
@@ -411,8 +452,8 @@ impl Source<'_> {
         })?;
         for key in spec.assumed.keys() {
             if !resolves(self.text, key) {
-                return Err(self.error(
-                    line_col(self.file_text, assumed_entry(self.file_text, key)),
+                return Err(self.error_on(
+                    &format!("assumed.{key}"),
                     format!(
                         "[assumed] \"{key}\": expected the dotted key of a value this file gives, such as \"transverse.spacing_mm\""
                     ),
@@ -433,25 +474,51 @@ impl Source<'_> {
     }
 
     /// An error about the value at a dotted key path: at its place in the
-    /// file, or, where a `--set` gave it, naming that override (placed at
-    /// the key it replaced, or at the table it was added to).
+    /// file, or, where an override gave it, naming that override (placed at
+    /// the key it replaced, or at the table it was added to). A check that
+    /// compares values (the cover against the size, a station against the
+    /// height) can refuse a value the file kept because an override changed
+    /// another; unless the file alone fails the same way, such an error
+    /// lists the overrides.
     fn error_on(&self, path: &str, message: String) -> SpecError {
-        let set = self.overrides.iter().rev().find(|(k, _)| {
-            path == k
+        let own = self.overrides.iter().rev().find(|o| {
+            path == o.key
                 || path
-                    .strip_prefix(k.as_str())
+                    .strip_prefix(o.key.as_str())
                     .is_some_and(|r| r.starts_with('.'))
         });
-        match set {
-            Some((k, v)) => self.error(
-                line_col(self.file_text, locate(self.file_text, k)),
-                format!("--set {k}={v}: {message}"),
-            ),
-            None => self.error(
-                line_col(self.file_text, locate(self.file_text, path)),
-                message,
-            ),
+        if let Some(o) = own {
+            return self.error(self.place(&o.key), format!("{}: {message}", o.given));
         }
+        let plain = self.error(self.place(path), message);
+        if self.overrides.is_empty() {
+            return plain;
+        }
+        let file_alone = Source {
+            text: self.file_text,
+            file_text: self.file_text,
+            overrides: &[],
+            file: self.file,
+        }
+        .parse();
+        if file_alone.is_err_and(|e| e.line == plain.line && e.message == plain.message) {
+            return plain;
+        }
+        let given: Vec<&str> = self.overrides.iter().map(|o| o.given.as_str()).collect();
+        SpecError {
+            message: format!("{} (with {})", plain.message, given.join(" ")),
+            ..plain
+        }
+    }
+
+    /// Line and column in the file of the value at a dotted key path:
+    /// `[assumed]` entries by their quoted key, the rest by [`locate`].
+    fn place(&self, path: &str) -> (usize, usize) {
+        let at = path
+            .strip_prefix("assumed.")
+            .and_then(|key| assumed_entry(self.file_text, key))
+            .unwrap_or_else(|| locate(self.file_text, path));
+        line_col(self.file_text, at)
     }
 
     fn error(&self, (line, column): (usize, usize), message: String) -> SpecError {
@@ -528,15 +595,11 @@ fn path_at(src: &str, offset: usize) -> Option<String> {
 }
 
 /// Byte offset of the entry `key` of the `[assumed]` table (whose keys are
-/// quoted dotted paths, so [`locate`] cannot walk to them).
-fn assumed_entry(src: &str, key: &str) -> usize {
-    toml_edit::ImDocument::parse(src)
-        .ok()
-        .and_then(|doc| {
-            let t = doc.get("assumed")?.as_table()?;
-            t.key(key)?.span().map(|s| s.start)
-        })
-        .unwrap_or(0)
+/// quoted dotted paths, so [`locate`] cannot walk to them), if it has one.
+fn assumed_entry(src: &str, key: &str) -> Option<usize> {
+    let doc = toml_edit::ImDocument::parse(src).ok()?;
+    let t = doc.get("assumed")?.as_table()?;
+    t.key(key)?.span().map(|s| s.start)
 }
 
 /// Whether a dotted key path names a value of the text.
@@ -582,7 +645,7 @@ impl Specimen {
     /// error naming the override; the checks of [`Specimen::parse`] then
     /// apply to the changed file as to any other (unknown keys included),
     /// and an error in a replaced value names its `--set`.
-    pub fn load_with(path: &Path, overrides: &[(String, String)]) -> Result<Specimen, SpecError> {
+    pub fn load_with(path: &Path, overrides: &[Override]) -> Result<Specimen, SpecError> {
         if overrides.is_empty() {
             return Specimen::load(path);
         }
@@ -856,8 +919,14 @@ impl Specimen {
         if let Some(m) = a.mass_scaling_dt_s {
             pos(m, "analysis.mass_scaling_dt_s", "a target time step in s")?;
         }
-        if a.threads == Some(0) {
-            return Err(("analysis.threads".into(), "at least one thread".into()));
+        if let Some(t) = a.threads {
+            let (most, hardware) = thread_limit();
+            if !(1..=most).contains(&t) {
+                return Err((
+                    "analysis.threads".into(),
+                    format!("1 to {most} threads (4 for each of this machine's {hardware} hardware threads), found {t}"),
+                ));
+            }
         }
         if self.output.samples < 2 {
             return Err(("output.samples".into(), "at least 2 rows".into()));
@@ -1146,7 +1215,7 @@ mod tests {
         let file = Path::new(env!("CARGO_MANIFEST_DIR")).join("../specimens/tp-92.toml");
         let path = file.as_path();
         let src = std::fs::read_to_string(path).unwrap();
-        let set = |k: &str, v: &str| vec![(k.to_string(), v.to_string())];
+        let set = |k: &str, v: &str| vec![Override::set(k, v)];
         let changed = apply_overrides(&src, &set("loading.axial_force_kn", "320")).unwrap();
         assert!(
             changed.contains("axial_force_kn = 320     # Table 1.1"),
@@ -1387,11 +1456,8 @@ mod tests {
         let file =
             std::env::temp_dir().join(format!("hyst-spec-lines-{}.toml", std::process::id()));
         std::fs::write(&file, src.replacen("samples = 1000", "samples = 1", 1)).expect("write");
-        let set = |pairs: &[(&str, &str)]| -> Vec<(String, String)> {
-            pairs
-                .iter()
-                .map(|(k, v)| (k.to_string(), v.to_string()))
-                .collect()
+        let set = |pairs: &[(&str, &str)]| -> Vec<Override> {
+            pairs.iter().map(|(k, v)| Override::set(k, v)).collect()
         };
         let added = ("concrete.elastic_modulus_mpa", "25000.0");
         let plain = Specimen::parse(&src, &tp91).expect("tp-91");
@@ -1430,6 +1496,50 @@ mod tests {
             e.message.contains("--set concrete.elastic_modulus_mpa=-1"),
             "{e}"
         );
+
+        // A check comparing two values fails on one the file kept: it lists the overrides,
+        // which the file alone does not fail without.
+        let e = Specimen::load_with(&file, &set(&[("section.size_mm", "60")]))
+            .expect_err("a 60 mm section");
+        assert_eq!(e.line, line_of(&src, "clear_cover_mm = 27.5"), "{e}");
+        assert!(
+            e.message.ends_with(
+                "cover and bars that fit inside the section (with --set section.size_mm=60)"
+            ),
+            "{e}"
+        );
+
+        // An array of tables is reached by index, as the errors print it.
+        let e = Specimen::load_with(&file, &set(&[("output.rebar_station.1.z_m", "9.0")]))
+            .expect_err("z_m 9");
+        let second = src.rfind("z_m = 0.675").expect("a second station");
+        assert_eq!(e.line, src[..second].lines().count() + 1, "{e}");
+        assert!(
+            e.message
+                .starts_with("--set output.rebar_station.1.z_m=9.0: `output.rebar_station.1.z_m`"),
+            "{e}"
+        );
+
+        // `[assumed]` entries, whose keys hold dots, are placed at the entry under an override
+        // too; one the override added names it.
+        let bad = src.replacen(
+            "\"transverse.kind\" = \"closed",
+            "\"transverse.kind\" = 5 # \"closed",
+            1,
+        );
+        std::fs::write(&file, &bad).expect("write");
+        let e = Specimen::load_with(&file, &set(&[added])).expect_err("an entry of 5");
+        assert_eq!(e.line, line_of(&bad, "\"transverse.kind\" = 5"), "{e}");
+        std::fs::write(&file, &src).expect("write");
+        let e = Specimen::load_with(&file, &set(&[("assumed.foo", "\"x\"")]))
+            .expect_err("an entry for nothing");
+        assert!(
+            e.message
+                .starts_with("--set assumed.foo=\"x\": [assumed] \"foo\""),
+            "{e}"
+        );
+        let header = src.lines().position(|l| l == "[assumed]").map(|i| i + 1);
+        assert_eq!(Some(e.line), header, "{e}");
         std::fs::remove_file(&file).ok();
     }
 
@@ -1483,7 +1593,7 @@ mod tests {
             assert!(s.notes().is_empty(), "{}: {:?}", p.display(), s.notes());
         }
         let tp91 = Path::new(env!("CARGO_MANIFEST_DIR")).join("../specimens/tp-91.toml");
-        let set = vec![("transverse.spacing_mm".to_string(), "94".to_string())];
+        let set = vec![Override::set("transverse.spacing_mm", "94")];
         let s = Specimen::load_with(&tp91, &set).expect("spacing 94");
         // Twice the spacing, half the ratio: 4 A_t / (b_c s) with A_t = pi 6.35^2 / 4 and
         // b_c = 400 - 2 (27.5 + 6.35 / 2) mm.
