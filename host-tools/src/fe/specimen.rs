@@ -284,6 +284,11 @@ pub struct Specimen {
 /// when the file is read rather than failing to allocate after minutes.
 const MAX_ELEMENTS: f64 = 5e6;
 
+/// The one input a file may leave out whose default is a physical
+/// assumption (`4700 sqrt(fc)`, [`Specimen::concrete`]): an `[assumed]`
+/// entry may document it without the file giving it.
+const ASSUMED_DEFAULT: &str = "concrete.elastic_modulus_mpa";
+
 /// The most worker threads a run may ask for on this machine, and the
 /// machine's hardware threads. Each step ends at a barrier for all threads:
 /// past the hardware threads they only take turns (3,000 threads ran a
@@ -451,11 +456,11 @@ impl Source<'_> {
             self.error_on(&path, format!("`{path}`: expected {expected}"))
         })?;
         for key in spec.assumed.keys() {
-            if !resolves(self.text, key) {
+            if key != ASSUMED_DEFAULT && !resolves(self.text, key) {
                 return Err(self.error_on(
                     &format!("assumed.{key}"),
                     format!(
-                        "[assumed] \"{key}\": expected the dotted key of a value this file gives, such as \"transverse.spacing_mm\""
+                        "[assumed] \"{key}\": expected the dotted key of a value this file gives, such as \"transverse.spacing_mm\", or \"{ASSUMED_DEFAULT}\", whose default is an assumption"
                     ),
                 ));
             }
@@ -1583,6 +1588,19 @@ mod tests {
         // A key naming an element of an array is a value of the file.
         let ok = src.replacen("\"transverse.kind\" =", "\"loading.twist.1\" =", 1);
         Specimen::parse(&ok, Path::new("x.toml")).expect("an array element");
+        // The default modulus is an assumption the file may document without giving it...
+        let entry = format!("\"{ASSUMED_DEFAULT}\" =");
+        let ok = src.replacen("\"transverse.kind\" =", &entry, 1);
+        let s = Specimen::parse(&ok, Path::new("x.toml")).expect("the default modulus");
+        assert_eq!(s.concrete.elastic_modulus_mpa, None);
+        // ... and the key is the field's: given in the file, it is read.
+        let given = ok.replacen(
+            "poisson = 0.2",
+            "poisson = 0.2\nelastic_modulus_mpa = 25000.0",
+            1,
+        );
+        let s = Specimen::parse(&given, Path::new("x.toml")).expect("a given modulus");
+        assert_eq!(s.concrete.elastic_modulus_mpa, Some(25000.0));
     }
 
     /// The five specimens' bars give their Table 1.1 ratios (no note); changing the bars says
