@@ -44,21 +44,23 @@ pub struct ParamFile {
     text: String,
 }
 
-/// The `units` object: `displacement` a length unit and `force` a force unit, both given,
-/// nothing else.
-fn checked_units(file: JsonFile, u: Map<String, Value>) -> Result<Map<String, Value>> {
-    for key in u.keys() {
-        if key != "displacement" && key != "force" {
-            bail!(
-                "{}: \"units\" has a key \"{key}\"; expected \"displacement\" and \"force\"",
-                file.at(&["units", key])
-            );
-        }
+/// A `units` object of exactly the two `keys`, each a unit of its quantity, both given
+/// (parameter files: `displacement` and `force`; PHM files: `twist` and `torque`): each unit as
+/// written and as read, in the order of `keys`.
+pub(super) fn checked_units<'a>(
+    file: JsonFile,
+    u: &'a Map<String, Value>,
+    keys: [(&str, Quantity); 2],
+) -> Result<[(&'a str, Unit); 2]> {
+    if let Some(other) = u.keys().find(|k| keys.iter().all(|(key, _)| key != k)) {
+        bail!(
+            "{}: \"units\" has a key \"{other}\"; expected \"{}\" and \"{}\"",
+            file.at(&["units", other]),
+            keys[0].0,
+            keys[1].0
+        );
     }
-    for (key, quantity) in [
-        ("displacement", Quantity::Length),
-        ("force", Quantity::Force),
-    ] {
+    let unit = |(key, quantity): (&str, Quantity)| -> Result<(&'a str, Unit)> {
         let text = u.get(key).and_then(Value::as_str).ok_or_else(|| {
             anyhow!(
                 "{}: \"units\" needs \"{key}\" as a string ({})",
@@ -66,15 +68,23 @@ fn checked_units(file: JsonFile, u: Map<String, Value>) -> Result<Map<String, Va
                 quantity.known_symbols()
             )
         })?;
-        if Unit::parse(text).map(Unit::quantity) != Some(quantity) {
-            bail!(
-                "{}: \"units\".\"{key}\" is '{text}'; expected a {quantity} unit ({})",
-                file.at(&["units", key]),
-                quantity.known_symbols()
-            );
+        match Unit::parse(text) {
+            Some(unit) if unit.quantity() == quantity => Ok((text, unit)),
+            _ => {
+                let article = if quantity == Quantity::Angle {
+                    "an"
+                } else {
+                    "a"
+                };
+                bail!(
+                    "{}: \"units\".\"{key}\" is '{text}'; expected {article} {quantity} unit ({})",
+                    file.at(&["units", key]),
+                    quantity.known_symbols()
+                )
+            }
         }
-    }
-    Ok(u)
+    };
+    Ok([unit(keys[0])?, unit(keys[1])?])
 }
 
 impl ParamFile {
@@ -126,7 +136,17 @@ impl ParamFile {
                             .with_context(|| format!("{}: key \"model\"", at.at(&["model"])))?,
                     )
                 }
-                ("units", Value::Object(u)) => file.units = Some(checked_units(at, u)?),
+                ("units", Value::Object(u)) => {
+                    checked_units(
+                        at,
+                        &u,
+                        [
+                            ("displacement", Quantity::Length),
+                            ("force", Quantity::Force),
+                        ],
+                    )?;
+                    file.units = Some(u);
+                }
                 ("fit", v) => file.fit = Some(v),
                 (k, v) if META.contains(&k) => bail!(
                     "{}: key \"{k}\" has the wrong type ({})",

@@ -20,6 +20,7 @@
 //! runs. `hyst fit` adds a `fit` object (how the file was fitted), which the
 //! reader skips.
 
+use super::params::checked_units;
 use crate::data::json_place::JsonFile;
 use crate::data::{Quantity, Unit};
 use anyhow::{anyhow, bail, Context, Result};
@@ -46,17 +47,6 @@ pub struct PhmFile {
     /// The `(twist, torque)` units the parameters are in: the stated ones,
     /// else deg and kN m.
     pub data_units: (Unit, Unit),
-}
-
-fn unit_of(file: JsonFile, key: &str, text: &str, q: Quantity) -> Result<Unit> {
-    match Unit::parse(text) {
-        Some(u) if u.quantity() == q => Ok(u),
-        _ => bail!(
-            "{}: units.{key} is '{text}': expected an {q} unit ({})",
-            file.at(&["units", key]),
-            q.known_symbols()
-        ),
-    }
 }
 
 /// Whether the JSON text is a PHM file (its `model` is `phm-torsion`).
@@ -131,29 +121,19 @@ impl PhmFile {
                     }
                 }
                 "units" => {
-                    if let Some(other) = v
-                        .as_object()
-                        .and_then(|u| u.keys().find(|k| *k != "twist" && *k != "torque"))
-                    {
+                    let Some(u) = v.as_object() else {
                         bail!(
-                            "{}: \"units\" has a key \"{other}\"; expected \"twist\" and \"torque\"",
-                            file.at(&["units", other])
-                        );
-                    }
-                    let get = |k: &str| v.get(k).and_then(Value::as_str).map(str::to_string);
-                    match (get("twist"), get("torque")) {
-                        (Some(t), Some(m)) => {
-                            data_units = (
-                                unit_of(file, "twist", &t, Quantity::Angle)?,
-                                unit_of(file, "torque", &m, Quantity::Torque)?,
-                            );
-                            units = Some((t, m));
-                        }
-                        _ => bail!(
                             "{}: \"units\" must be {{\"twist\": ..., \"torque\": ...}}",
                             file.at(&["units"])
-                        ),
-                    }
+                        );
+                    };
+                    let [(t, twist), (m, torque)] = checked_units(
+                        file,
+                        u,
+                        [("twist", Quantity::Angle), ("torque", Quantity::Torque)],
+                    )?;
+                    data_units = (twist, torque);
+                    units = Some((t.to_string(), m.to_string()));
                 }
                 "primary" => {
                     let Some(p) = v.as_object() else {
