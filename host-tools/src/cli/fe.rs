@@ -100,8 +100,6 @@ pub fn run_fe(args: FeArgs) -> anyhow::Result<()> {
     );
     let opts = RunOptions {
         out: args.out.clone(),
-        threads: None,
-        element_size_mm: None,
     };
     let show = |p: &Progress| {
         bar.set_length(p.steps);

@@ -10,22 +10,20 @@ use super::output::{self, Csv, Sample, Station, TORQUE_TWIST_HEADER};
 use super::quasi_static::EnergyTrace;
 use super::rebar::embed;
 use super::section::{Cut, Profile, Stage, StageSummary};
-use super::specimen::{thread_limit, Specimen};
+use super::specimen::Specimen;
 use super::torque_twist::{self, Comparison, Marks};
 use anyhow::Context;
 use std::path::PathBuf;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Instant;
 
-/// Choices made on the command line.
+/// Choices made on the command line beyond the specimen's values (which
+/// `--set`, `--threads` and `--element-size` change when the file is read:
+/// [`Specimen::load_with`]).
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct RunOptions {
     /// Directory for CSV and VTK output (nothing is written without one).
     pub out: Option<PathBuf>,
-    /// Worker threads, overriding the specimen file.
-    pub threads: Option<usize>,
-    /// Element size in mm, overriding the specimen file.
-    pub element_size_mm: Option<f64>,
 }
 
 /// What the progress display shows.
@@ -170,19 +168,8 @@ pub fn run<M: SolidMaterial, B: BarMaterial>(
     stop: &AtomicBool,
     mut progress: impl FnMut(&Progress),
 ) -> anyhow::Result<Summary> {
-    let spec = match opts.element_size_mm {
-        Some(h) => spec
-            .clone()
-            .with_element_size(h)
-            .map_err(anyhow::Error::msg)?,
-        None => spec.clone(),
-    };
-    let threads = opts.threads.or(spec.analysis.threads).unwrap_or(2);
-    let (most, hardware) = thread_limit();
-    anyhow::ensure!(
-        (1..=most).contains(&threads),
-        "{threads} worker threads: expected 1 to {most} (4 for each of this machine's {hardware} hardware threads)"
-    );
+    // Checked against the machine's threads when the file was read.
+    let threads = spec.analysis.threads.unwrap_or(2);
     let mesh = spec.mesh();
     let quality = mesh.section.quality(mesh.dz);
     let sets = spec.bar_sets();
@@ -456,6 +443,7 @@ struct Record {
 mod tests {
     use super::*;
     use crate::fe::material::Elastic;
+    use crate::fe::specimen::Override;
     use std::path::Path;
 
     /// A short plain-looking circular column: D = 300 mm, L = 0.3 m, thin
@@ -517,8 +505,6 @@ transverse_ratio_pct = 0.16
         let dir = std::env::temp_dir().join(format!("hyst-fe-section-{}", std::process::id()));
         let opts = RunOptions {
             out: Some(dir.clone()),
-            threads: Some(1),
-            element_size_mm: None,
         };
         let s = run(
             &spec,
@@ -568,12 +554,14 @@ transverse_ratio_pct = 0.16
     #[test]
     fn an_interrupted_run_keeps_complete_files_and_says_so() {
         let p = Path::new(env!("CARGO_MANIFEST_DIR")).join("../specimens/tp-92.toml");
-        let spec = Specimen::load(&p).expect("specimen");
+        let coarse = [
+            Override::set("analysis.threads", "1"),
+            Override::set("analysis.element_size_mm", "100.0"),
+        ];
+        let spec = Specimen::load_with(&p, &coarse).expect("specimen");
         let dir = std::env::temp_dir().join(format!("hyst-fe-interrupt-{}", std::process::id()));
         let opts = RunOptions {
             out: Some(dir.clone()),
-            threads: Some(1),
-            element_size_mm: Some(100.0),
         };
         let stop = AtomicBool::new(false);
         let mut calls = 0;

@@ -684,16 +684,6 @@ impl Specimen {
         .parse()
     }
 
-    /// Checks the values once more after `--element-size` replaced the
-    /// file's.
-    pub fn with_element_size(mut self, mm: f64) -> Result<Specimen, String> {
-        self.analysis.element_size_mm = mm;
-        self.check().map_err(|(path, expected)| {
-            format!("--element-size {mm}: `{path}`: expected {expected}")
-        })?;
-        Ok(self)
-    }
-
     fn check(&self) -> Result<(), Fault> {
         fn pos(v: f64, path: &'static str, what: &str) -> Result<(), Fault> {
             if v.is_finite() && v > 0.0 {
