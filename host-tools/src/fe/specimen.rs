@@ -411,30 +411,40 @@ fn apply_overrides(src: &str, overrides: &[Override]) -> Result<String, (usize, 
     Ok(doc.to_string())
 }
 
+/// The items along a dotted key path (numeric segments index arrays) below
+/// `root`, as far as it has them.
+fn walk<'a>(root: &'a toml_edit::Item, path: &str) -> Vec<&'a toml_edit::Item> {
+    let mut items = Vec::new();
+    let mut item = root;
+    for seg in path.split('.') {
+        let next = match seg.parse::<usize>() {
+            Ok(i) => item.get(i),
+            Err(_) => item.get(seg),
+        };
+        let Some(n) = next else { break };
+        items.push(n);
+        item = n;
+    }
+    items
+}
+
 /// Byte offset of the value at a dotted key path (numeric segments index
 /// arrays), or of the deepest table on the path that exists.
 fn locate(src: &str, path: &str) -> usize {
     let Ok(doc) = toml_edit::ImDocument::parse(src) else {
         return 0;
     };
-    let mut item = doc.as_item();
-    let mut at = 0;
-    for seg in path.split('.') {
-        let next = match seg.parse::<usize>() {
-            Ok(i) => item.get(i),
-            Err(_) => item.get(seg),
-        };
-        match next {
-            Some(n) => {
-                item = n;
-                if let Some(s) = n.span() {
-                    at = s.start;
-                }
-            }
-            None => break,
-        }
-    }
-    at
+    walk(doc.as_item(), path)
+        .iter()
+        .rev()
+        .find_map(|item| item.span())
+        .map_or(0, |s| s.start)
+}
+
+/// Whether a dotted key path names a value below `root`.
+fn resolves(root: &toml_edit::Item, path: &str) -> bool {
+    let items = walk(root, path);
+    items.len() == path.split('.').count() && items.last().is_some_and(|i| i.is_value())
 }
 
 /// Specimen text as parsed, with what errors are placed against: the
@@ -455,8 +465,11 @@ impl Source<'_> {
         spec.check().map_err(|(path, expected)| {
             self.error_on(&path, format!("`{path}`: expected {expected}"))
         })?;
+        // Parsed once for all entries; the text is TOML, as it just deserialised.
+        let doc = toml_edit::ImDocument::parse(self.text).ok();
         for key in spec.assumed.keys() {
-            if key != ASSUMED_DEFAULT && !resolves(self.text, key) {
+            let given = doc.as_ref().is_some_and(|d| resolves(d.as_item(), key));
+            if key != ASSUMED_DEFAULT && !given {
                 return Err(self.error_on(
                     &format!("assumed.{key}"),
                     format!(
@@ -605,25 +618,6 @@ fn assumed_entry(src: &str, key: &str) -> Option<usize> {
     let doc = toml_edit::ImDocument::parse(src).ok()?;
     let t = doc.get("assumed")?.as_table()?;
     t.key(key)?.span().map(|s| s.start)
-}
-
-/// Whether a dotted key path names a value of the text.
-fn resolves(src: &str, path: &str) -> bool {
-    let Ok(doc) = toml_edit::ImDocument::parse(src) else {
-        return false;
-    };
-    let mut item = doc.as_item();
-    for seg in path.split('.') {
-        let next = match seg.parse::<usize>() {
-            Ok(i) => item.get(i),
-            Err(_) => item.get(seg),
-        };
-        match next {
-            Some(n) => item = n,
-            None => return false,
-        }
-    }
-    item.is_value()
 }
 
 /// The text of a specimen file, or an error naming it.
