@@ -79,6 +79,11 @@ pub struct ReadArgs {
     /// Skip this many leading data rows (each is reported).
     #[arg(long, default_value_t = 0)]
     pub skip_rows: usize,
+    /// Drive the model with the displacement (or twist) as measured, even where
+    /// its noise makes most of its reversals (by default such a record is made
+    /// monotone between the test's reversals, with a note).
+    #[arg(long)]
+    pub raw_displacement: bool,
 }
 
 impl ReadArgs {

@@ -3,12 +3,13 @@
 //! missing.
 
 use super::columns::ReadArgs;
-use super::fit::{load_timed, parse_fix, Bar};
+use super::fit::{load_timed, parse_fix, Bar, Loaded};
 use super::ForcingArgs;
 use crate::discover::rate::{self, RateCheck};
 use crate::discover::slip::{self, SlipCheck};
 use crate::discover::{page, weigh, Diagnosis, Suspect, WeighOptions};
 use crate::fit::experiment::Drive;
+use crate::fit::input_noise::Monotone;
 use crate::fit::problem::Problem;
 use crate::fit::run::{self, Method, Outcome, Progress};
 use crate::model::{EffectRef, ModelSpec, ParamFile};
@@ -90,20 +91,31 @@ pub struct DiagnoseArgs {
     pub params: Option<PathBuf>,
 }
 
-/// Fits (or evaluates the given parameters of) the model on the record; also
-/// returns the record's sample times, if it has them.
-pub fn initial_fit(
-    common: &Common,
-    params: Option<&Path>,
-    bar: &Bar,
-) -> Result<(Problem, Outcome, Option<Vec<f64>>)> {
+/// The first fit of `diagnose` and `discover`, and what it was made on.
+pub struct Initial {
+    /// The record and model.
+    pub problem: Problem,
+    /// The fit (or the given parameters, evaluated).
+    pub outcome: Outcome,
+    /// The record's sample times, if it has them.
+    pub time: Option<Vec<f64>>,
+    /// What the reader did to a noisy displacement.
+    pub monotone: Option<Monotone>,
+}
+
+/// Fits (or evaluates the given parameters of) the model on the record.
+pub fn initial_fit(common: &Common, params: Option<&Path>, bar: &Bar) -> Result<Initial> {
     let file = params.map(ParamFile::read).transpose()?;
     let forcing = common.forcing.or_file(file.as_ref())?;
     // A fit of the oscillator carries its mass (kg), as `simulate` reads it.
     let mass = common
         .mass
         .or_else(|| file.as_ref().and_then(|f| f.values.get("m").copied()));
-    let (exp, time) = load_timed(&common.data, &common.read, mass, forcing)?;
+    let Loaded {
+        exp,
+        time,
+        monotone,
+    } = load_timed(&common.data, &common.read, mass, forcing)?;
     let problem = Problem::new(common.model, exp, &common.fix)
         .with_context(|| common.data.display().to_string())?;
     if problem.dim() == 0 {
@@ -123,7 +135,12 @@ pub fn initial_fit(
         }
         None => run::fit(&problem, Method::Auto, &problem.par.default_start(), bar)?,
     };
-    Ok((problem, outcome, time))
+    Ok(Initial {
+        problem,
+        outcome,
+        time,
+        monotone,
+    })
 }
 
 /// What the record shows that no effect of the library models.
@@ -134,15 +151,21 @@ pub struct Beyond {
     pub rate: Option<RateCheck>,
     /// Slip or a gap ([`slip::check`]): displacement-driven records.
     pub slip: Option<SlipCheck>,
+    /// Noise in the displacement, made monotone between the test's reversals
+    /// ([`crate::fit::input_noise::monotone`]): the loader decided, this
+    /// reports it.
+    pub displacement_noise: Option<(Monotone, String)>,
 }
 
 impl Beyond {
-    /// Both checks on the fit `outcome` of `problem`, lined up as `d`.
+    /// Both checks on the fit `outcome` of `problem`, lined up as `d`, with
+    /// what the loader did to a noisy displacement.
     pub fn check(
         problem: &Problem,
         outcome: &Outcome,
         d: &Diagnosis,
         time: Option<&[f64]>,
+        monotone: Option<Monotone>,
     ) -> Self {
         let rate = match (&problem.exp.drive, time) {
             (Drive::Displacement, Some(t)) => rate::check(d, t, outcome.scores.nrmse),
@@ -151,6 +174,10 @@ impl Beyond {
         Beyond {
             rate,
             slip: slip::check(d, &problem.exp.drive),
+            displacement_noise: monotone.map(|m| {
+                let words = m.describe("displacement", "mm");
+                (m, format!("{}{}.", words[..1].to_uppercase(), &words[1..]))
+            }),
         }
     }
 
@@ -164,7 +191,11 @@ impl Beyond {
             .slip
             .as_ref()
             .map(|s| ("slip or gap", s.significant, s.evidence.as_str()));
-        rate.into_iter().chain(slip).collect()
+        let noise = self
+            .displacement_noise
+            .as_ref()
+            .map(|(_, words)| ("displacement noise", true, words.as_str()));
+        noise.into_iter().chain(rate).chain(slip).collect()
     }
 
     /// Adds the checks to an HTML report.
@@ -215,6 +246,7 @@ pub fn diagnosis_json(
         "suspects": suspects_json(suspects),
         "rate_dependence": beyond.rate,
         "slip": beyond.slip,
+        "displacement_noise": beyond.displacement_noise.as_ref().map(|(m, _)| m),
     })
 }
 
@@ -266,11 +298,16 @@ pub fn print_diagnosis(
 /// Runs `hyst diagnose`.
 pub fn run(args: DiagnoseArgs) -> Result<()> {
     let bar = Bar::new(&format!("diagnose {}", args.common.model), args.common.json);
-    let (problem, outcome, time) = initial_fit(&args.common, args.params.as_deref(), &bar)?;
+    let Initial {
+        problem,
+        outcome,
+        time,
+        monotone,
+    } = initial_fit(&args.common, args.params.as_deref(), &bar)?;
     let d = Diagnosis::new(&problem, &outcome)?;
     bar.status("weighing the candidate effects");
     let suspects = weigh(&problem, &outcome, &d, &args.common.weigh_options()?);
-    let beyond = Beyond::check(&problem, &outcome, &d, time.as_deref());
+    let beyond = Beyond::check(&problem, &outcome, &d, time.as_deref(), monotone);
     bar.finish();
     if let Some(path) = &args.common.report {
         let mut report = Report::new(&format!("Diagnosis of {}", args.common.data.display()));

@@ -2,7 +2,7 @@
 //! significant effect, refit from the previous fit, repeat until nothing
 //! significant is left; then the ladder.
 
-use super::diagnose::{diagnosis_json, initial_fit, print_diagnosis, Beyond, Common};
+use super::diagnose::{diagnosis_json, initial_fit, print_diagnosis, Beyond, Common, Initial};
 use super::fit::Bar;
 use crate::discover::{discover, page};
 use crate::fit::run::Progress;
@@ -26,7 +26,12 @@ pub struct DiscoverArgs {
 pub fn run(args: DiscoverArgs) -> Result<()> {
     let quiet = args.common.json;
     let bar = Bar::new(&format!("discover from {}", args.common.model), quiet);
-    let (problem, outcome, time) = initial_fit(&args.common, None, &bar)?;
+    let Initial {
+        problem,
+        outcome,
+        time,
+        monotone,
+    } = initial_fit(&args.common, None, &bar)?;
     let options = args.common.weigh_options()?;
     let discovery = discover(problem, outcome, &options, |step| {
         let top = step.suspects.iter().find(|s| s.significant);
@@ -50,6 +55,7 @@ pub fn run(args: DiscoverArgs) -> Result<()> {
         &last.outcome,
         &last.diagnosis,
         time.as_deref(),
+        monotone,
     );
     bar.finish();
     let rungs: Vec<PlotRung> = discovery

@@ -100,6 +100,9 @@ fn read_history(args: &ExportArgs, elements: &Elements) -> Result<Option<Vec<f64
     let Some(path) = &args.history else {
         return Ok(None);
     };
+    if args.read.raw_displacement {
+        bail!("--raw-displacement is for fitting: export runs the table along --history as given");
+    }
     let record = data::read(path, &args.read.options().input(Channel::Displacement))?;
     for n in record.notices() {
         eprintln!("note: {n}");

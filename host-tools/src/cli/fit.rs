@@ -4,6 +4,7 @@ use super::columns::ReadArgs;
 use super::{ForcingArgs, ModelArg};
 use crate::data;
 use crate::fit::experiment::{Between, Drive, Experiment};
+use crate::fit::input_noise::{self, Monotone};
 use crate::fit::nsga2::{BinaryCrossover, Encoding, Nsga2};
 use crate::fit::objectives::Scores;
 use crate::fit::problem::Problem;
@@ -155,7 +156,17 @@ pub fn load(
     mass: Option<f64>,
     forcing: Option<Between>,
 ) -> Result<Experiment> {
-    load_timed(path, read, mass, forcing).map(|(exp, _)| exp)
+    load_timed(path, read, mass, forcing).map(|l| l.exp)
+}
+
+/// A record read for fitting.
+pub struct Loaded {
+    /// What the model is driven with and scored against.
+    pub exp: Experiment,
+    /// The sample times, if the record has them.
+    pub time: Option<Vec<f64>>,
+    /// What was done to a noisy displacement ([`input_noise::monotone`]).
+    pub monotone: Option<Monotone>,
 }
 
 /// Reads a record for fitting, with its sample times if it has any.
@@ -164,7 +175,7 @@ pub fn load_timed(
     read: &ReadArgs,
     mass: Option<f64>,
     forcing: Option<Between>,
-) -> Result<(Experiment, Option<Vec<f64>>)> {
+) -> Result<Loaded> {
     let mut opts = read.options();
     // A mass means the oscillator of eq. 3.3: the force is the input, also
     // in records whose columns would default to a displacement input.
@@ -180,7 +191,23 @@ pub fn load_timed(
     if let Some(between) = forcing {
         exp = exp.with_forcing(between)?;
     }
-    Ok((exp, time))
+    let mut monotone = None;
+    if exp.drive == Drive::Displacement && !read.raw_displacement {
+        if let Some((u, m)) = input_noise::monotone(&exp.input) {
+            eprintln!(
+                "note: {}: {}",
+                path.display(),
+                m.describe("displacement", "mm")
+            );
+            exp.input = u;
+            monotone = Some(m);
+        }
+    }
+    Ok(Loaded {
+        exp,
+        time,
+        monotone,
+    })
 }
 
 /// Where `--polish` started: the scores of the set NSGA-II chose.
@@ -206,6 +233,7 @@ pub fn fit_json(
     outcome: &Outcome,
     data: &std::path::Path,
     seconds: f64,
+    monotone: Option<&Monotone>,
 ) -> Result<Value> {
     let candidate = problem
         .par
@@ -235,6 +263,9 @@ pub fn fit_json(
     if let Some(chosen) = &outcome.polished_from {
         meta["polished_from"] = polished_from(chosen);
     }
+    if let Some(m) = monotone {
+        meta["displacement_noise"] = json!(m);
+    }
     Ok(to_json(
         problem.par.spec,
         &outcome.values,
@@ -254,9 +285,10 @@ pub fn run(args: FitArgs) -> Result<()> {
     if args.params.is_some() {
         bail!("--params (a start file) is for --model {PHM_MODEL}");
     }
-    let exp = load(&args.data, &args.read, args.mass, args.forcing.between)?;
-    let problem =
-        Problem::new(model, exp, &args.fix).with_context(|| args.data.display().to_string())?;
+    let loaded = load_timed(&args.data, &args.read, args.mass, args.forcing.between)?;
+    let monotone = loaded.monotone;
+    let problem = Problem::new(model, loaded.exp, &args.fix)
+        .with_context(|| args.data.display().to_string())?;
     if problem.dim() == 0 {
         bail!("every parameter of {model} is fixed: nothing to fit");
     }
@@ -278,7 +310,7 @@ pub fn run(args: FitArgs) -> Result<()> {
     )?;
     bar.finish();
     let seconds = t0.elapsed().as_secs_f64();
-    let file = fit_json(&problem, &outcome, &args.data, seconds)?;
+    let file = fit_json(&problem, &outcome, &args.data, seconds, monotone.as_ref())?;
     if let Some(out) = &args.out {
         std::fs::write(out, serde_json::to_string_pretty(&file)? + "\n")
             .with_context(|| format!("{}: cannot write", out.display()))?;
@@ -317,6 +349,7 @@ pub fn run(args: FitArgs) -> Result<()> {
             "polished_from": outcome.polished_from.as_ref().map(polished_from),
             "forcing": forcing(&problem).map(Between::name),
             "at_bounds": outcome.at_bounds,
+            "displacement_noise": monotone,
         });
         obj["params"] = file
             .as_object()

@@ -4,6 +4,7 @@
 use super::fit::{Bar, FitArgs};
 use super::simulate::SimulateArgs;
 use crate::data::{self, Channel, Quantity, ReadOptions, Record, Unit};
+use crate::fit::input_noise;
 use crate::fit::phm::{first_excursions, fit_envelope, idealise, valid_start, PhmProblem};
 use crate::fit::run::Progress;
 use crate::model::{phm_json, simulate_phm, PhmFile, PHM_MODEL, PHM_POINTS};
@@ -167,8 +168,20 @@ pub fn fit(args: &FitArgs) -> Result<()> {
     for n in record.notices() {
         eprintln!("note: {n}");
     }
-    let twist = channel(&record, Channel::Displacement, tu)?;
+    let mut twist = channel(&record, Channel::Displacement, tu)?;
     let torque = channel(&record, Channel::Force, mu)?;
+    let mut monotone = None;
+    if !args.read.raw_displacement {
+        if let Some((t, m)) = input_noise::monotone(&twist) {
+            eprintln!(
+                "note: {}: {}",
+                args.data.display(),
+                m.describe("twist", tu.symbol())
+            );
+            twist = t;
+            monotone = Some(m);
+        }
+    }
     let start = match &start_file {
         Some(f) => f.params.clone(),
         None => idealised_start(&args.data, &twist, &torque)?,
@@ -197,6 +210,7 @@ pub fn fit(args: &FitArgs) -> Result<()> {
         "primary_std": { "positive": points_std(0), "negative": points_std(1) },
         "fixed": problem.vars.iter().filter(|v| v.fixed).map(|v| json!([v.name, v.start])).collect::<Vec<_>>(),
         "identifiability": outcome.identifiability,
+        "displacement_noise": monotone,
     });
     let file = phm_json(&outcome.params, (tu, mu), Some(meta.clone()));
     if let Some(out) = &args.out {

@@ -5,6 +5,7 @@ pub mod experiment;
 pub mod forcing;
 pub mod homotopy;
 pub mod identifiability;
+pub mod input_noise;
 pub mod lanes;
 pub mod lsq;
 pub mod nsga2;

@@ -1,0 +1,185 @@
+//! Noise in the imposed displacement: the reversals it makes must not become
+//! a physical effect.
+//!
+//! The records come from a simulator written here, apart from the core: BWBN
+//! in dz/du form integrated by classical Runge-Kutta at 40 steps a sample,
+//! hysteretic energy normalised by k Zu0^2, along sine cycles of 5 to 100 mm
+//! (two at each amplitude, 100 samples a cycle), with the noise of
+//! `../shared/data/synthetic/`: 0.2 mm on the displacement and 1% of the peak
+//! on the force. Strong stiffness degradation behind that noise was named
+//! together with a strength degradation that is not there (delta-BIC -28, on
+//! five seeds of five) before the loader made such a displacement monotone
+//! between the test's reversals (`hyst::fit::input_noise`).
+
+#[path = "support/cli.rs"]
+mod cli;
+
+use cli::{hyst, ok, stderr, write};
+use serde_json::Value;
+
+/// Samples per cycle, and the cycles' amplitudes (mm), two cycles each.
+const PER_CYCLE: usize = 100;
+const AMPLITUDES: [f64; 8] = [5.0, 10.0, 20.0, 30.0, 40.0, 60.0, 80.0, 100.0];
+
+/// A standard normal stream (Box-Muller on xorshift).
+struct Normal(u64);
+
+impl Normal {
+    fn uniform(&mut self) -> f64 {
+        self.0 ^= self.0 << 13;
+        self.0 ^= self.0 >> 7;
+        self.0 ^= self.0 << 17;
+        ((self.0 >> 11) as f64 + 0.5) / (1u64 << 53) as f64
+    }
+    fn sample(&mut self) -> f64 {
+        let (a, b) = (self.uniform(), self.uniform());
+        (-2.0 * a.ln()).sqrt() * (2.0 * std::f64::consts::PI * b).cos()
+    }
+}
+
+/// The record as CSV: stiffness degradation `delta_eta` (per unit of
+/// normalised energy), noise `(displacement mm, force fraction of peak)`.
+fn record(delta_eta: f64, noise: (f64, f64), seed: u64) -> String {
+    let (k, alpha, n, beta, gamma) = (50.0, 0.05, 1.5, 0.02, 0.0116);
+    let zu0 = (1.0f64 / (beta + gamma)).powf(1.0 / n);
+    let mut u = vec![0.0];
+    for a in AMPLITUDES {
+        for _ in 0..2 {
+            for i in 1..=PER_CYCLE {
+                u.push(a * (2.0 * std::f64::consts::PI * i as f64 / PER_CYCLE as f64).sin());
+            }
+        }
+    }
+    // (dz/du, de/du) along an increment of sign `s`.
+    let rate = |z: f64, e: f64, s: f64| {
+        let sg = if s * z >= 0.0 { 1.0 } else { -1.0 };
+        let dz = (1.0 - z.abs().powf(n) * (beta * sg + gamma)) / (1.0 + delta_eta * e);
+        (dz, (1.0 - alpha) * k * z / (k * zu0 * zu0))
+    };
+    let (mut z, mut e) = (0.0f64, 0.0f64);
+    let mut f = vec![0.0];
+    for w in u.windows(2) {
+        let h = (w[1] - w[0]) / 40.0;
+        let s = h.signum();
+        for _ in 0..40 {
+            let k1 = rate(z, e, s);
+            let k2 = rate(z + 0.5 * h * k1.0, e + 0.5 * h * k1.1, s);
+            let k3 = rate(z + 0.5 * h * k2.0, e + 0.5 * h * k2.1, s);
+            let k4 = rate(z + h * k3.0, e + h * k3.1, s);
+            z += h / 6.0 * (k1.0 + 2.0 * k2.0 + 2.0 * k3.0 + k4.0);
+            e += h / 6.0 * (k1.1 + 2.0 * k2.1 + 2.0 * k3.1 + k4.1);
+        }
+        f.push(alpha * k * w[1] + (1.0 - alpha) * k * z);
+    }
+    let peak = f.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    let mut g = Normal(0x9e37_79b9_7f4a_7c15 ^ seed);
+    let mut text = String::from("time (s),displacement (mm),force (kN)\n");
+    for (i, (ui, fi)) in u.iter().zip(&f).enumerate() {
+        let um = ui + noise.0 * g.sample();
+        let fm = fi + noise.1 * peak * g.sample();
+        text += &format!("{:.3},{um:.5},{fm:.5}\n", 0.6 * i as f64);
+    }
+    text
+}
+
+/// `hyst VERB FILE --model bw --json ARGS`, parsed, and its stderr.
+fn run(verb: &str, file: &str, args: &[&str]) -> (Value, String) {
+    let mut all = vec![verb, file, "--model", "bw", "--json"];
+    all.extend_from_slice(args);
+    let o = ok(hyst(&all));
+    let json = serde_json::from_slice(&o.stdout).expect("JSON on stdout");
+    (json, stderr(&o))
+}
+
+/// The test's reversals: a peak and a trough a cycle.
+const REVERSALS: u64 = 2 * 2 * AMPLITUDES.len() as u64;
+
+/// Named first on every record, and alone on all but one of five: on seed 0
+/// strength degradation still comes in second, at delta-BIC -12.5 against
+/// the threshold of 10 (NRMSE 0.02192 -> 0.02174), and smoothing inside the
+/// monotone branches does not change that (measured while this was built);
+/// seeds 1-9 name stiffness degradation alone. Before the loader made the
+/// displacement monotone, all five named both.
+#[test]
+fn stiffness_degradation_behind_a_noisy_displacement_is_named_first_and_mostly_alone() {
+    let mut alone = 0;
+    for seed in 0..5 {
+        let file = write(
+            &format!("stiffness-{seed}.csv"),
+            &record(0.02, (0.2, 0.01), seed),
+        );
+        let (json, err) = run("discover", &file, &[]);
+        assert_eq!(
+            json["ladder"][1]["model"], "bw+stiffness-degradation",
+            "seed {seed}: {:#}",
+            json["ladder"]
+        );
+        if json["model"] == "bw+stiffness-degradation" {
+            alone += 1;
+        }
+        let noise = &json["displacement_noise"];
+        assert_eq!(noise["kept_reversals"], REVERSALS, "seed {seed}: {noise}");
+        let sd = noise["noise"].as_f64().unwrap();
+        assert!((sd / 0.2 - 1.0).abs() < 0.1, "seed {seed}: noise {sd}");
+        assert!(
+            err.contains("made monotone between the 32 reversals"),
+            "{err}"
+        );
+    }
+    assert!(
+        alone >= 4,
+        "stiffness degradation alone on {alone} of 5 records"
+    );
+}
+
+#[test]
+fn nothing_is_named_behind_a_noisy_displacement_when_nothing_is_missing() {
+    for seed in 10..12 {
+        let file = write(
+            &format!("control-{seed}.csv"),
+            &record(0.0, (0.2, 0.01), seed),
+        );
+        let (json, _) = run("discover", &file, &[]);
+        assert_eq!(json["model"], "bw", "seed {seed}: {:#}", json["ladder"]);
+        let suspects = json["suspects"].as_array().unwrap();
+        assert!(
+            suspects.iter().all(|s| s["significant"] == false),
+            "seed {seed}: {suspects:#?}"
+        );
+    }
+}
+
+#[test]
+fn a_displacement_whose_reversals_are_the_tests_is_read_as_measured() {
+    // Force noise only: the displacement's reversals are all the test's.
+    let file = write("clean.csv", &record(0.02, (0.0, 0.01), 1));
+    let (json, err) = run("fit", &file, &[]);
+    assert_eq!(json["displacement_noise"], Value::Null, "{err}");
+    assert!(!err.contains("monotone"), "{err}");
+    // A real column test (Lehman and Moehle 415).
+    let column = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../shared/data/peer-spd-columns/fd/spd_369.csv"
+    );
+    let (json, err) = run("fit", column, &[]);
+    assert_eq!(json["displacement_noise"], Value::Null, "{err}");
+}
+
+#[test]
+fn raw_displacement_keeps_the_measurement_and_the_fit_file_says_what_was_done() {
+    let file = write("noisy.csv", &record(0.0, (0.2, 0.01), 3));
+    let (json, err) = run("fit", &file, &["--raw-displacement"]);
+    assert_eq!(json["displacement_noise"], Value::Null);
+    assert!(!err.contains("monotone"), "{err}");
+    let raw = json["nrmse"].as_f64().unwrap();
+    let out = cli::tmp("noisy-fit.json");
+    let (json, _) = run("fit", &file, &["--out", out.to_str().unwrap()]);
+    // The noise the model no longer sees is error it no longer makes.
+    let monotone = json["nrmse"].as_f64().unwrap();
+    assert!(monotone < 0.9 * raw, "{monotone} against {raw}");
+    let saved: Value = serde_json::from_str(&std::fs::read_to_string(&out).unwrap()).unwrap();
+    assert_eq!(
+        saved["fit"]["displacement_noise"]["kept_reversals"],
+        REVERSALS
+    );
+}
