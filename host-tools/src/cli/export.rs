@@ -48,6 +48,9 @@ fn parse_scalar(s: &str) -> Result<ScalarKind, String> {
 
 /// Runs `hyst export`.
 pub fn run(args: ExportArgs) -> Result<()> {
+    if args.read.raw_displacement {
+        bail!("--raw-displacement is for fitting: export runs the table along --history as given");
+    }
     let src = export::read(&args.fits)?;
     for note in &src.notes {
         eprintln!("note: {note}");
@@ -100,9 +103,6 @@ fn read_history(args: &ExportArgs, elements: &Elements) -> Result<Option<Vec<f64
     let Some(path) = &args.history else {
         return Ok(None);
     };
-    if args.read.raw_displacement {
-        bail!("--raw-displacement is for fitting: export runs the table along --history as given");
-    }
     let record = data::read(path, &args.read.options().input(Channel::Displacement))?;
     for n in record.notices() {
         eprintln!("note: {n}");
