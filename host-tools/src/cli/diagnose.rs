@@ -191,15 +191,15 @@ impl Beyond {
             .slip
             .as_ref()
             .map(|s| ("slip or gap", s.significant, s.evidence.as_str()));
-        let noise = self
-            .displacement_noise
-            .as_ref()
-            .map(|(_, words)| ("displacement noise", true, words.as_str()));
-        noise.into_iter().chain(rate).chain(slip).collect()
+        rate.into_iter().chain(slip).collect()
     }
 
     /// Adds the checks to an HTML report.
     pub fn section(&self, report: &mut Report) {
+        if let Some((_, words)) = &self.displacement_noise {
+            report.section("The record: noise in the displacement");
+            report.paragraph(words);
+        }
         for (name, _, evidence) in self.found() {
             report.section(&format!("Beyond the library: {name}"));
             report.paragraph(evidence);
@@ -265,6 +265,10 @@ pub fn print_diagnosis(
         problem.dim(),
         100.0 * d.energy_error
     );
+    if let Some((_, words)) = &beyond.displacement_noise {
+        outln!("the record:");
+        outln!("  {words}");
+    }
     outln!("where it fails:");
     for p in d.places.iter().take(4) {
         outln!("  {}", p.words);
