@@ -15,7 +15,8 @@
 //! ([`monotone`]):
 //! * the noise is estimated from the third differences ([`noise`]);
 //! * the turning points that rise above it, [`THRESHOLD`] deviations, are
-//!   the reversals of the test ([`turning_points`]);
+//!   the reversals of the test (found as the diagnosis finds its cycles:
+//!   [`Cycles`] with that absolute threshold);
 //! * between two of them the path is replaced by its least-squares monotone
 //!   fit ([`isotonic`], the pool-adjacent-violators algorithm), which keeps
 //!   the turning points exactly and moves no sample further than the noise
@@ -24,6 +25,7 @@
 //! This is done only when at least half of the measured reversals are such
 //! noise: a record whose reversals are the test's is left as it is.
 
+use crate::data::{Cycles, Threshold};
 use serde::Serialize;
 
 /// Turning points must rise this many noise deviations above the path on
@@ -68,53 +70,6 @@ pub fn reversals(u: &[f64]) -> usize {
     count
 }
 
-/// The turning points of `u` that stand more than `delta` above (peaks) or
-/// below (troughs) the path between them and the next: a turn is taken once
-/// the path has moved back by more than `delta` from the extreme reached.
-/// Each one is the extreme of the path between its neighbours.
-pub fn turning_points(u: &[f64], delta: f64) -> Vec<usize> {
-    let mut turns = Vec::new();
-    let Some(&first) = u.first() else {
-        return turns;
-    };
-    // Before the first decisive move: the highest and lowest samples so far.
-    let (mut hi, mut lo) = (0, 0);
-    // Afterwards: the direction of travel and the extreme reached in it.
-    let mut rising: Option<bool> = None;
-    let mut ext = 0;
-    for (i, &v) in u.iter().enumerate().skip(1) {
-        match rising {
-            None => {
-                if v > u[hi] {
-                    hi = i;
-                }
-                if v < u[lo] {
-                    lo = i;
-                }
-                if v - first > delta {
-                    rising = Some(true);
-                    ext = hi;
-                } else if first - v > delta {
-                    rising = Some(false);
-                    ext = lo;
-                }
-            }
-            Some(up) => {
-                let further = if up { v > u[ext] } else { v < u[ext] };
-                let back = if up { u[ext] - v } else { v - u[ext] };
-                if further {
-                    ext = i;
-                } else if back > delta {
-                    turns.push(ext);
-                    rising = Some(!up);
-                    ext = i;
-                }
-            }
-        }
-    }
-    turns
-}
-
 /// The least-squares fit to `y` that never falls (`increasing`) or never
 /// rises: the pool-adjacent-violators algorithm, O(n).
 pub fn isotonic(y: &[f64], increasing: bool) -> Vec<f64> {
@@ -148,7 +103,7 @@ pub struct Monotone {
     pub threshold: f64,
     /// Reversals of the measured displacement ([`reversals`]).
     pub measured_reversals: usize,
-    /// Reversals kept: the turning points above the threshold.
+    /// Reversals kept: the turning points above the threshold ([`Cycles`]).
     pub kept_reversals: usize,
     /// The largest change made to a sample.
     pub largest_change: f64,
@@ -182,7 +137,10 @@ impl Monotone {
 pub fn monotone(u: &[f64]) -> Option<(Vec<f64>, Monotone)> {
     let sd = noise(u).filter(|s| *s > 0.0 && s.is_finite())?;
     let threshold = THRESHOLD * sd;
-    let turns = turning_points(u, threshold);
+    // Each turning point is the extreme of the path between its neighbours,
+    // so the monotone fits below keep it exactly.
+    let cycles = Cycles::find(u, Threshold::Absolute(threshold)).ok()?;
+    let turns = cycles.reversals();
     let measured = reversals(u);
     if measured.saturating_sub(turns.len()) < turns.len().max(1) {
         return None;
@@ -283,16 +241,29 @@ mod tests {
         assert_eq!(reversals(&triangles(&[1.0, 2.0], 8)), 8);
     }
 
+    /// The reversals [`monotone`] keeps are those of [`Cycles`] at an
+    /// absolute threshold: the extremes that stand out by more than it.
     #[test]
     fn turning_points_are_the_extremes_that_stand_out() {
+        let turns = |u: &[f64], h: f64| {
+            Cycles::find(u, Threshold::Absolute(h))
+                .unwrap()
+                .reversals()
+                .to_vec()
+        };
         // A peak of 2 and a trough of -1, with wiggles of 0.3 on the way.
         let u = [0.0, 1.0, 0.7, 2.0, 1.0, 1.3, -1.0, 0.0];
-        assert_eq!(turning_points(&u, 0.5), vec![3, 6]);
+        assert_eq!(turns(&u, 0.5), vec![3, 6]);
         // Every wiggle counts at a lower threshold.
-        assert_eq!(turning_points(&u, 0.2), vec![1, 2, 3, 4, 5, 6]);
+        assert_eq!(turns(&u, 0.2), vec![1, 2, 3, 4, 5, 6]);
         // A first move down, then up.
-        assert_eq!(turning_points(&[0.0, -0.4, -2.0, 1.0], 1.0), vec![2]);
-        assert!(turning_points(&[], 1.0).is_empty());
+        assert_eq!(turns(&[0.0, -0.4, -2.0, 1.0], 1.0), vec![2]);
+        assert!(turns(&[], 1.0).is_empty());
+        // Swings larger than the threshold that stay within it of the first
+        // sample are reversals too (all but the first extreme, which no
+        // earlier move confirms).
+        let opening = [0.0, 0.6, -0.6, 0.6, -0.6, 3.0, -3.0, 0.0];
+        assert_eq!(turns(&opening, 1.0), vec![2, 3, 4, 5, 6]);
     }
 
     #[test]
@@ -343,8 +314,8 @@ mod tests {
             rms(&measured)
         );
         // The turning points stay as measured.
-        let turns = turning_points(&measured, m.threshold);
-        assert!(turns.iter().all(|&i| out[i] == measured[i]));
+        let cycles = Cycles::find(&measured, Threshold::Absolute(m.threshold)).unwrap();
+        assert!(cycles.reversals().iter().all(|&i| out[i] == measured[i]));
         assert!(m.largest_change < 5.0 * 0.2, "{m:?}");
     }
 
