@@ -154,7 +154,7 @@ pub struct Beyond {
     /// Noise in the displacement, made monotone between the test's reversals
     /// ([`crate::fit::input_noise::monotone`]): the loader decided, this
     /// reports it.
-    pub displacement_noise: Option<(Monotone, String)>,
+    pub displacement_noise: Option<Monotone>,
 }
 
 impl Beyond {
@@ -174,11 +174,16 @@ impl Beyond {
         Beyond {
             rate,
             slip: slip::check(d, &problem.exp.drive),
-            displacement_noise: monotone.map(|m| {
-                let words = m.describe("displacement", "mm");
-                (m, format!("{}{}.", words[..1].to_uppercase(), &words[1..]))
-            }),
+            displacement_noise: monotone,
         }
+    }
+
+    /// What the loader did to a noisy displacement, as a sentence.
+    fn noise_words(&self) -> Option<String> {
+        self.displacement_noise.as_ref().map(|m| {
+            let words = m.describe("displacement", "mm");
+            format!("{}{}.", words[..1].to_uppercase(), &words[1..])
+        })
     }
 
     /// The checks that ran, as (name, significant, evidence).
@@ -196,9 +201,9 @@ impl Beyond {
 
     /// Adds the checks to an HTML report.
     pub fn section(&self, report: &mut Report) {
-        if let Some((_, words)) = &self.displacement_noise {
+        if let Some(words) = self.noise_words() {
             report.section("The record: noise in the displacement");
-            report.paragraph(words);
+            report.paragraph(&words);
         }
         for (name, _, evidence) in self.found() {
             report.section(&format!("Beyond the library: {name}"));
@@ -246,7 +251,7 @@ pub fn diagnosis_json(
         "suspects": suspects_json(suspects),
         "rate_dependence": beyond.rate,
         "slip": beyond.slip,
-        "displacement_noise": beyond.displacement_noise.as_ref().map(|(m, _)| m),
+        "displacement_noise": beyond.displacement_noise,
     })
 }
 
@@ -265,7 +270,7 @@ pub fn print_diagnosis(
         problem.dim(),
         100.0 * d.energy_error
     );
-    if let Some((_, words)) = &beyond.displacement_noise {
+    if let Some(words) = beyond.noise_words() {
         outln!("the record:");
         outln!("  {words}");
     }

@@ -191,23 +191,35 @@ pub fn load_timed(
     if let Some(between) = forcing {
         exp = exp.with_forcing(between)?;
     }
-    let mut monotone = None;
-    if exp.drive == Drive::Displacement && !read.raw_displacement {
-        if let Some((u, m)) = input_noise::monotone(&exp.input) {
-            eprintln!(
-                "note: {}: {}",
-                path.display(),
-                m.describe("displacement", "mm")
-            );
-            exp.input = u;
-            monotone = Some(m);
-        }
-    }
+    let monotone = match exp.drive {
+        Drive::Displacement => monotone_input(path, &mut exp.input, read, "displacement", "mm"),
+        Drive::Force { .. } => None,
+    };
     Ok(Loaded {
         exp,
         time,
         monotone,
     })
+}
+
+/// Makes `values`, the `quantity` (displacement, twist) of the record at
+/// `path`, monotone between the test's reversals where its noise makes most of
+/// them ([`input_noise::monotone`]), unless `--raw-displacement` is given; says
+/// so in a note.
+pub fn monotone_input(
+    path: &std::path::Path,
+    values: &mut Vec<f64>,
+    read: &ReadArgs,
+    quantity: &str,
+    unit: &str,
+) -> Option<Monotone> {
+    if read.raw_displacement {
+        return None;
+    }
+    let (v, m) = input_noise::monotone(values)?;
+    eprintln!("note: {}: {}", path.display(), m.describe(quantity, unit));
+    *values = v;
+    Some(m)
 }
 
 /// Where `--polish` started: the scores of the set NSGA-II chose.

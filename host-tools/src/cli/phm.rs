@@ -1,10 +1,9 @@
 //! `hyst simulate` and `hyst fit` with `--model phm-torsion`: the polygonal
 //! hysteresis model of thesis ch. 5 on torque-twist records.
 
-use super::fit::{Bar, FitArgs};
+use super::fit::{monotone_input, Bar, FitArgs};
 use super::simulate::SimulateArgs;
 use crate::data::{self, Channel, Quantity, ReadOptions, Record, Unit};
-use crate::fit::input_noise;
 use crate::fit::phm::{first_excursions, fit_envelope, idealise, valid_start, PhmProblem};
 use crate::fit::run::Progress;
 use crate::model::{phm_json, simulate_phm, PhmFile, PHM_MODEL, PHM_POINTS};
@@ -170,18 +169,7 @@ pub fn fit(args: &FitArgs) -> Result<()> {
     }
     let mut twist = channel(&record, Channel::Displacement, tu)?;
     let torque = channel(&record, Channel::Force, mu)?;
-    let mut monotone = None;
-    if !args.read.raw_displacement {
-        if let Some((t, m)) = input_noise::monotone(&twist) {
-            eprintln!(
-                "note: {}: {}",
-                args.data.display(),
-                m.describe("twist", tu.symbol())
-            );
-            twist = t;
-            monotone = Some(m);
-        }
-    }
+    let monotone = monotone_input(&args.data, &mut twist, &args.read, "twist", tu.symbol());
     let start = match &start_file {
         Some(f) => f.params.clone(),
         None => idealised_start(&args.data, &twist, &torque)?,
