@@ -173,22 +173,12 @@ pub fn monotone(u: &[f64]) -> Option<(Vec<f64>, Monotone)> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::data::Normal;
 
-    /// A deterministic standard normal sequence (Box-Muller on xorshift).
+    /// `n` standard normal deviates from `seed`.
     fn gauss(seed: u64, n: usize) -> Vec<f64> {
-        let mut s = seed;
-        let mut uniform = move || {
-            s ^= s << 13;
-            s ^= s >> 7;
-            s ^= s << 17;
-            ((s >> 11) as f64 + 0.5) / (1u64 << 53) as f64
-        };
-        (0..n)
-            .map(|_| {
-                let (a, b) = (uniform(), uniform());
-                (-2.0 * a.ln()).sqrt() * (2.0 * std::f64::consts::PI * b).cos()
-            })
-            .collect()
+        let mut g = Normal::new(seed);
+        (0..n).map(|_| g.sample()).collect()
     }
 
     /// Triangular cycles of growing amplitude, `per_cycle` samples each, two
