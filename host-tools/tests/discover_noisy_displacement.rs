@@ -37,23 +37,56 @@ impl Normal {
     }
 }
 
-/// The record as CSV: stiffness degradation `delta_eta` (per unit of
-/// normalised energy), noise `(displacement mm, force fraction of peak)`.
-fn record(delta_eta: f64, noise: (f64, f64), seed: u64) -> String {
+/// What the simulator hides, and along which cycles.
+#[derive(Clone, Copy)]
+struct Hidden {
+    /// Stiffness degradation per unit of normalised energy.
+    delta_eta: f64,
+    /// Pinching (zeta0 0.9, p 0.5, q 0.1, psi 0.2, lambda 0.3, the width
+    /// in units of Zu0).
+    pinching: bool,
+    /// Triangular cycles instead of sine ones.
+    triangular: bool,
+}
+
+const SINE: Hidden = Hidden {
+    delta_eta: 0.0,
+    pinching: false,
+    triangular: false,
+};
+
+/// The record as CSV, with noise `(displacement mm, force fraction of
+/// peak)`.
+fn record(hidden: Hidden, noise: (f64, f64), seed: u64) -> String {
     let (k, alpha, n, beta, gamma) = (50.0, 0.05, 1.5, 0.02, 0.0116);
     let zu0 = (1.0f64 / (beta + gamma)).powf(1.0 / n);
     let mut u = vec![0.0];
     for a in AMPLITUDES {
         for _ in 0..2 {
             for i in 1..=PER_CYCLE {
-                u.push(a * (2.0 * std::f64::consts::PI * i as f64 / PER_CYCLE as f64).sin());
+                let t = i as f64 / PER_CYCLE as f64;
+                u.push(
+                    a * if !hidden.triangular {
+                        (2.0 * std::f64::consts::PI * t).sin()
+                    } else if t <= 0.25 {
+                        4.0 * t
+                    } else if t <= 0.75 {
+                        2.0 - 4.0 * t
+                    } else {
+                        4.0 * t - 4.0
+                    },
+                );
             }
         }
     }
+    let zeta0 = if hidden.pinching { 0.9 } else { 0.0 };
     // (dz/du, de/du) along an increment of sign `s`.
     let rate = |z: f64, e: f64, s: f64| {
         let sg = if s * z >= 0.0 { 1.0 } else { -1.0 };
-        let dz = (1.0 - z.abs().powf(n) * (beta * sg + gamma)) / (1.0 + delta_eta * e);
+        let zeta1 = zeta0 * (1.0 - (-0.5 * e).exp());
+        let zeta2 = 0.2 * zu0 * (0.3 + zeta1);
+        let h = 1.0 - zeta1 * (-(z * s - 0.1 * zu0).powi(2) / (zeta2 * zeta2)).exp();
+        let dz = h * (1.0 - z.abs().powf(n) * (beta * sg + gamma)) / (1.0 + hidden.delta_eta * e);
         (dz, (1.0 - alpha) * k * z / (k * zu0 * zu0))
     };
     let (mut z, mut e) = (0.0f64, 0.0f64);
@@ -94,31 +127,41 @@ fn run(verb: &str, file: &str, args: &[&str]) -> (Value, String) {
 /// The test's reversals: a peak and a trough a cycle.
 const REVERSALS: u64 = 2 * 2 * AMPLITUDES.len() as u64;
 
-/// Named first on every record, and alone on all but one of five: on seed 0
-/// strength degradation still comes in second, at delta-BIC -12.5 against
-/// the threshold of 10 (NRMSE 0.02192 -> 0.02174), and smoothing inside the
-/// monotone branches does not change that (measured while this was built);
-/// seeds 1-9 name stiffness degradation alone. Before the loader made the
-/// displacement monotone, all five named both.
+/// Named alone on every record. Before the loader made the displacement
+/// monotone, all five named strength degradation too; with the monotone
+/// displacement but each reversal taken from its one sample, seed 0 still
+/// did (delta-BIC -12.5 against the threshold of 10, NRMSE 0.02192 ->
+/// 0.02174). Placing the reversals from the samples around them took the
+/// fit to 0.02096 and the extra effect away (measured on seeds 0-9: alone on
+/// all ten).
 #[test]
-fn stiffness_degradation_behind_a_noisy_displacement_is_named_first_and_mostly_alone() {
-    let mut alone = 0;
+fn stiffness_degradation_behind_a_noisy_displacement_is_named_alone() {
     for seed in 0..5 {
         let file = write(
             &format!("stiffness-{seed}.csv"),
-            &record(0.02, (0.2, 0.01), seed),
+            &record(
+                Hidden {
+                    delta_eta: 0.02,
+                    ..SINE
+                },
+                (0.2, 0.01),
+                seed,
+            ),
         );
         let (json, err) = run("discover", &file, &[]);
         assert_eq!(
-            json["ladder"][1]["model"], "bw+stiffness-degradation",
+            json["model"], "bw+stiffness-degradation",
             "seed {seed}: {:#}",
             json["ladder"]
         );
-        if json["model"] == "bw+stiffness-degradation" {
-            alone += 1;
-        }
         let noise = &json["displacement_noise"];
         assert_eq!(noise["kept_reversals"], REVERSALS, "seed {seed}: {noise}");
+        // Sine cycles: rounded corners, each placed by its parabola.
+        assert_eq!(noise["corner_shape"], "parabola", "seed {seed}: {noise}");
+        assert_eq!(
+            noise["refined_reversals"], REVERSALS,
+            "seed {seed}: {noise}"
+        );
         let sd = noise["noise"].as_f64().unwrap();
         assert!((sd / 0.2 - 1.0).abs() < 0.1, "seed {seed}: noise {sd}");
         assert!(
@@ -126,10 +169,6 @@ fn stiffness_degradation_behind_a_noisy_displacement_is_named_first_and_mostly_a
             "{err}"
         );
     }
-    assert!(
-        alone >= 4,
-        "stiffness degradation alone on {alone} of 5 records"
-    );
 }
 
 #[test]
@@ -137,7 +176,7 @@ fn nothing_is_named_behind_a_noisy_displacement_when_nothing_is_missing() {
     for seed in 10..12 {
         let file = write(
             &format!("control-{seed}.csv"),
-            &record(0.0, (0.2, 0.01), seed),
+            &record(SINE, (0.2, 0.01), seed),
         );
         let (json, _) = run("discover", &file, &[]);
         assert_eq!(json["model"], "bw", "seed {seed}: {:#}", json["ladder"]);
@@ -152,7 +191,17 @@ fn nothing_is_named_behind_a_noisy_displacement_when_nothing_is_missing() {
 #[test]
 fn a_displacement_whose_reversals_are_the_tests_is_read_as_measured() {
     // Force noise only: the displacement's reversals are all the test's.
-    let file = write("clean.csv", &record(0.02, (0.0, 0.01), 1));
+    let file = write(
+        "clean.csv",
+        &record(
+            Hidden {
+                delta_eta: 0.02,
+                ..SINE
+            },
+            (0.0, 0.01),
+            1,
+        ),
+    );
     let (json, err) = run("fit", &file, &[]);
     assert_eq!(json["displacement_noise"], Value::Null, "{err}");
     assert!(!err.contains("monotone"), "{err}");
@@ -167,7 +216,7 @@ fn a_displacement_whose_reversals_are_the_tests_is_read_as_measured() {
 
 #[test]
 fn raw_displacement_keeps_the_measurement_and_the_fit_file_says_what_was_done() {
-    let file = write("noisy.csv", &record(0.0, (0.2, 0.01), 3));
+    let file = write("noisy.csv", &record(SINE, (0.2, 0.01), 3));
     let (json, err) = run("fit", &file, &["--raw-displacement"]);
     assert_eq!(json["displacement_noise"], Value::Null);
     assert!(!err.contains("monotone"), "{err}");
@@ -182,4 +231,28 @@ fn raw_displacement_keeps_the_measurement_and_the_fit_file_says_what_was_done() 
         saved["fit"]["displacement_noise"]["kept_reversals"],
         REVERSALS
     );
+}
+
+const TRIANGLES: Hidden = Hidden {
+    triangular: true,
+    ..SINE
+};
+
+/// Triangular cycles turn sharply, so the one noisy sample at each reversal
+/// sets where the model turns. Taken as measured, a chance imbalance between
+/// peaks and troughs read as asymmetry: on seed 5 at delta-BIC below -10
+/// (measured while this was built; seeds 0-19: on 2 with the reversals as
+/// measured, on 1, seed 16, with them placed from their neighbours).
+#[test]
+fn triangular_cycles_with_nothing_missing_name_nothing() {
+    for seed in [5, 6] {
+        let file = write(
+            &format!("triangles-{seed}.csv"),
+            &record(TRIANGLES, (0.2, 0.01), seed),
+        );
+        let (json, _) = run("discover", &file, &[]);
+        assert_eq!(json["model"], "bw", "seed {seed}: {:#}", json["ladder"]);
+        let noise = &json["displacement_noise"];
+        assert_eq!(noise["corner_shape"], "hinge", "seed {seed}: {noise}");
+    }
 }
