@@ -256,3 +256,32 @@ fn triangular_cycles_with_nothing_missing_name_nothing() {
         assert_eq!(noise["corner_shape"], "hinge", "seed {seed}: {noise}");
     }
 }
+
+/// Pinching is found alone. On seed 2 the pinching model refitted from the
+/// plain one stalled (NRMSE 0.167 where 0.025 is reachable), which made
+/// stiffness degradation look indispensable beside it, until each single
+/// was also refitted from the pair that holds it (measured while this was
+/// built: seeds 0-29, a second effect beside pinching on 3 before, on 2
+/// after, both asymmetry at delta-BIC -11.5 and -12.6).
+#[test]
+fn pinching_behind_triangular_cycles_is_named_alone() {
+    for seed in [1, 2] {
+        let file = write(
+            &format!("pinching-{seed}.csv"),
+            &record(
+                Hidden {
+                    pinching: true,
+                    ..TRIANGLES
+                },
+                (0.2, 0.01),
+                seed,
+            ),
+        );
+        let (json, _) = run("discover", &file, &[]);
+        assert_eq!(
+            json["model"], "bw+pinching",
+            "seed {seed}: {:#}",
+            json["ladder"]
+        );
+    }
+}

@@ -2,7 +2,9 @@
 //! and the model refitted, warm-started from the current fit (several starts
 //! for the new parameters), in parallel; then the pairs among the most
 //! promising candidates, warm-started from the better of their two single
-//! refits. Models are compared by the Bayesian information criterion,
+//! refits; then each single again from the best pair that holds it, since an
+//! effect's removal cost is only as good as the fit without it. Models are
+//! compared by the Bayesian information criterion,
 //!
 //! ```text
 //! BIC = n_eff ln(RSS) + k ln(n_eff)
@@ -193,6 +195,22 @@ pub fn refit(
     Ok((richer, out))
 }
 
+/// `single`'s model refitted from the parameters of `richer`, a model that
+/// holds its effects and more (the others switch off, as their parameters
+/// are not in `single`'s model).
+fn from_richer(single: &Fitted, richer: &Fitted) -> Option<Fitted> {
+    let (problem, _) = single.fit.as_ref()?;
+    let (_, outcome) = richer.fit.as_ref()?;
+    let warm: BTreeMap<&str, f64> = outcome.values.iter().map(|(k, v)| (*k, *v)).collect();
+    let x0 = problem.par.normalise(&warm);
+    let (lo, hi) = problem.par.bounds();
+    let f = LeastSquares::new(problem);
+    let sol = lsq::minimize(&f, &x0, &lo, &hi, Options::default())?;
+    let evaluations = sol.evaluations;
+    let o = run::finish(problem, "lsq (from a richer model)", sol, evaluations).ok()?;
+    Some(fitted(single.effects.clone(), problem.clone(), o))
+}
+
 /// Effective sample size of a residual: `n (1 - rho)/(1 + rho)` (rho its
 /// lag-one autocorrelation), but never below `floor` (the number of
 /// half-cycles, see [`weigh`]) nor `k + 2`, and never above `n`.
@@ -280,7 +298,7 @@ pub fn weigh(
         .unwrap_or_else(|| default_candidates(problem.par.spec));
     let base = fitted(vec![], problem.clone(), outcome.clone());
     // Singles.
-    let singles: Vec<Fitted> = candidates
+    let mut singles: Vec<Fitted> = candidates
         .par_iter()
         .map(
             |&e| match refit(problem, outcome, e, options.starts, true) {
@@ -316,6 +334,30 @@ pub fn weigh(
             Some(fitted(vec![from.effects[0], other], p2, o2))
         })
         .collect();
+    // A single whose own refit stopped short of the minimum a pair holding
+    // it shows (a pinching fit from the plain model can stall in a shallow
+    // valley) makes the pair's other effect look indispensable: its removal
+    // cost is measured against that stalled fit. So each single is also
+    // refitted from the best pair that holds it and beats every single, the
+    // other effect switched off, and the better of its two fits stands.
+    // (Measured on an independent simulator's triangular records with hidden
+    // pinching: strength or stiffness degradation named beside it on 2 of
+    // 40, the pinching-only fit at NRMSE 0.167 against 0.025.)
+    let best_single = singles.iter().map(|s| s.cost).fold(f64::INFINITY, f64::min);
+    let reduced: Vec<(usize, Fitted)> = (0..singles.len())
+        .into_par_iter()
+        .filter_map(|i| {
+            let pair = pairs
+                .iter()
+                .filter(|p| p.cost < best_single && p.effects.contains(&singles[i].effects[0]))
+                .min_by(|a, b| a.cost.total_cmp(&b.cost))?;
+            let f = from_richer(&singles[i], pair)?;
+            (f.cost < singles[i].cost).then_some((i, f))
+        })
+        .collect();
+    for (i, f) in reduced {
+        singles[i] = f;
+    }
     // Effects whose signature is absent (pinching without its pattern) do
     // not enter the comparison.
     let signatures: Vec<(EffectRef, Option<Signature>)> = candidates
