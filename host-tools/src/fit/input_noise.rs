@@ -294,7 +294,7 @@ pub fn monotone(u: &[f64]) -> Option<(Vec<f64>, Monotone)> {
     // residual, which the large cycles decide), then each reversal where its
     // corner puts it, unless the shape does not describe it (a hold, a
     // jump): residual variance above three times the noise's, which an
-    // honest fit of 7 degrees of freedom exceeds once in 300.
+    // honest fit of 7 degrees of freedom exceeds about once in 270.
     let last = u.len() - 1;
     let bounds = |t: usize| {
         let lo = if t == 0 { 0 } else { turns[t - 1] + 1 };
