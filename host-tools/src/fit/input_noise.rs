@@ -29,7 +29,9 @@
 //! This is done only when at least half of the measured reversals are such
 //! noise: a record whose reversals are the test's is left as it is.
 
+use super::regression::regress;
 use crate::data::{Cycles, Threshold};
+use nalgebra::{DMatrix, DVector};
 use serde::Serialize;
 
 /// Turning points must rise this many noise deviations above the path on
@@ -123,15 +125,13 @@ impl Monotone {
     /// in `unit`.
     pub fn describe(&self, quantity: &str, unit: &str) -> String {
         let noise_reversals = self.measured_reversals - self.kept_reversals;
-        let placed = if self.refined_reversals == self.kept_reversals {
-            "each placed".to_string()
+        let (placed, rest) = if self.refined_reversals == self.kept_reversals {
+            ("each placed".to_string(), "")
         } else {
-            format!("{} of them placed", self.refined_reversals)
-        };
-        let rest = if self.refined_reversals == self.kept_reversals {
-            ""
-        } else {
-            ", the rest as measured"
+            (
+                format!("{} of them placed", self.refined_reversals),
+                ", the rest as measured",
+            )
         };
         format!(
             "the {quantity} reverses {} times, but only {} of the turns rise more than {:.3} \
@@ -252,23 +252,15 @@ impl Shape {
     }
 }
 
-/// Least squares of `y` on the three functions `basis(x)` over `points`:
-/// the coefficients and the residual sum of squares.
+/// Least squares of `y` on the three functions `basis(x)` over `points`
+/// ([`regress`]): the coefficients and the residual sum of squares.
 fn least_squares(
-    points: impl Iterator<Item = (f64, f64)> + Clone,
+    points: impl Iterator<Item = (f64, f64)>,
     basis: &dyn Fn(f64) -> [f64; 3],
 ) -> Option<([f64; 3], f64)> {
-    let mut normal = nalgebra::Matrix3::<f64>::zeros();
-    let mut rhs = nalgebra::Vector3::<f64>::zeros();
-    for (x, y) in points.clone() {
-        let b = nalgebra::Vector3::from(basis(x));
-        normal += b * b.transpose();
-        rhs += b * y;
-    }
-    let coef = normal.cholesky()?.solve(&rhs);
-    let rss = points
-        .map(|(x, y)| (y - nalgebra::Vector3::from(basis(x)).dot(&coef)).powi(2))
-        .sum();
+    let (x, y): (Vec<f64>, Vec<f64>) = points.unzip();
+    let design = DMatrix::from_row_iterator(x.len(), 3, x.iter().flat_map(|&x| basis(x)));
+    let (rss, coef) = regress(&design, &DVector::from_vec(y))?;
     Some(([coef[0], coef[1], coef[2]], rss))
 }
 

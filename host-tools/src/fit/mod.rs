@@ -13,5 +13,6 @@ pub mod objectives;
 pub mod parametrization;
 pub mod phm;
 pub mod problem;
+pub mod regression;
 pub mod run;
 pub mod sensitivity;
