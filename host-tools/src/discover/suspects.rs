@@ -203,11 +203,11 @@ fn from_richer(single: &Fitted, richer: &Fitted) -> Option<Fitted> {
     let (_, outcome) = richer.fit.as_ref()?;
     let warm: BTreeMap<&str, f64> = outcome.values.iter().map(|(k, v)| (*k, *v)).collect();
     let x0 = problem.par.normalise(&warm);
-    let (lo, hi) = problem.par.bounds();
-    let f = LeastSquares::new(problem);
-    let sol = lsq::minimize(&f, &x0, &lo, &hi, Options::default())?;
-    let evaluations = sol.evaluations;
-    let o = run::finish(problem, "lsq (from a richer model)", sol, evaluations).ok()?;
+    let o = run::fit(problem, run::Method::Lsq, &x0, &run::Quiet).ok()?;
+    let o = Outcome {
+        method: "lsq (from a richer model)".to_string(),
+        ..o
+    };
     Some(fitted(single.effects.clone(), problem.clone(), o))
 }
 
