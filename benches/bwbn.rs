@@ -3,13 +3,15 @@
 //! 8 mm), for plain Bouc-Wen, pinching only (OpenSees' `BWBN`) and all four
 //! thesis effects, each with the default error-controlled integrator (force
 //! within 1e-6 of peak of the converged answer, `tests/bwbn_opensees.rs`) and
-//! with OpenSees' own scheme (one backward-Euler step per increment).
+//! with OpenSees' own scheme (one backward-Euler step per increment); plain
+//! Bouc-Wen also with `Method::Series` at the default tolerance 1e-9 (force
+//! within 4.6e-11 of peak, `tests/bwbn_series.rs`).
 //!
 //! `cargo bench --bench bwbn`; `benches/bwbn-vs-opensees.sh` runs it beside
 //! openseespy on the same history.
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
-use hysteresis::bwbn::{Bwbn, BwbnParams, Control, EffectKind, EffectSet, ZuRule};
+use hysteresis::bwbn::{Bwbn, BwbnParams, Control, EffectKind, EffectSet, Method, ZuRule};
 use hysteresis::Element;
 use std::hint::black_box;
 
@@ -55,8 +57,13 @@ fn bench(c: &mut Criterion) {
         ("bw+pinching", pinching),
         ("bwbn (all four)", EffectSet::BWBN),
     ];
+    let series = Control {
+        method: Method::Series,
+        ..Control::default_for()
+    };
     let schemes = [
         ("default", Control::default_for()),
+        ("series", series),
         ("opensees-scheme", Control::opensees(1e-8, 100)),
     ];
     let mut group = c.benchmark_group("bwbn_reference_history_f64");
@@ -64,6 +71,10 @@ fn bench(c: &mut Criterion) {
     for (name, set) in cases {
         let p = params(set);
         for (scheme, control) in schemes {
+            // With an effect on, `Series` integrates as the default does.
+            if control.method == Method::Series && set != EffectSet::NONE {
+                continue;
+            }
             group.bench_with_input(BenchmarkId::new(name, scheme), &h, |b, h| {
                 b.iter(|| {
                     let mut el = Bwbn::with_extra(p, (), control);

@@ -157,6 +157,7 @@ proptest! {
             check(Bwbn::new(p), &h)?;
             check(Bwbn::new(p).with_control(Control::opensees(1e-10, 50)), &h)?;
             check(Bwbn::new(p).with_control(Control { method: Method::Bs32, tol: 1e-5, max_substeps: 64 }), &h)?;
+            check(Bwbn::new(p).with_control(Control { method: Method::Series, tol: 1e-9, max_substeps: 1000 }), &h)?;
         }
     }
 
@@ -165,10 +166,12 @@ proptest! {
         if let Some(p) = params(bits, &v) {
             if let Ok(p32) = BwbnParams::<f32>::from_named(p.effect_set(), |n| p.get(n).map(|x| x as f32)) {
                 check(Bwbn::new(p32), &h)?;
+                check(Bwbn::new(p32).with_control(Control { method: Method::Series, tol: 1e-5, max_substeps: 64 }), &h)?;
             }
             let fixed = BwbnParams::<Fixed>::from_named(p.effect_set(), |n| p.get(n).map(Fixed::from_f64));
             if let Ok(pq) = fixed {
                 check(Bwbn::new(pq), &h)?;
+                check(Bwbn::new(pq).with_control(Control { method: Method::Series, tol: Fixed::from_f64(2e-4), max_substeps: 64 }), &h)?;
             }
         }
     }

@@ -50,6 +50,7 @@ mod params;
 mod rate;
 #[cfg(any(test, feature = "selftest"))]
 pub mod selftest;
+pub mod series;
 mod spec;
 
 pub use base::{BoucWen, PARAMS as BASE_PARAMS};
@@ -196,6 +197,26 @@ impl<S: Scalar, X: Effect<S>> Bwbn<S, X> {
         }
         let dir = if du > S::ZERO { S::ONE } else { -S::ONE };
         let len = du.abs();
+        if self.control.method == Method::Series
+            && self.params.effect_set() == EffectSet::NONE
+            && self.extra.is_none()
+        {
+            let base = self.params.base();
+            let end =
+                series::advance(base, &self.control, self.atol[0], (c.z, c.energy), dir, len)?;
+            if !(end.z.is_finite() && end.dz_du.is_finite()) {
+                return Err(StepError::NonFiniteState);
+            }
+            return Ok(State {
+                u,
+                z: end.z,
+                energy: end.energy,
+                dir,
+                dz: end.dz_du,
+                de: (S::ONE - base.alpha) * base.k0 * end.z,
+                h: c.h,
+            });
+        }
         let (p, x) = (&self.params, &self.extra);
         let (u0, dirv) = (c.u, dir);
         // y = [z, energy] as functions of s = |u - u0|: dy/ds = dir * dy/du.

@@ -119,6 +119,13 @@ pub trait Scalar:
     fn line(y0: Self, k: Self, x: Self, x0: Self) -> Self {
         y0 + k * (x - x0)
     }
+    /// `1/k`, rounded once. The float types read `k <= 16` from a table: series
+    /// coefficients divide by their index, and a division in every term would
+    /// cost more than the term.
+    #[inline]
+    fn recip_int(k: usize) -> Self {
+        Self::ratio(1, k as i32)
+    }
     /// +1 for positive, -1 for negative values, 0 for zero.
     #[inline]
     fn signum0(self) -> Self {

@@ -131,6 +131,15 @@ pub trait Effect<S: Scalar> {
     fn reads_energy(&self) -> bool {
         true
     }
+
+    /// Whether the effect changes nothing: no coefficient and no stiffness.
+    /// Only then can [`Method::Series`](super::Method::Series), which sums
+    /// plain Bouc-Wen, step an element that carries it. The default, `false`,
+    /// is the safe answer.
+    #[inline(always)]
+    fn is_none(&self) -> bool {
+        false
+    }
 }
 
 /// No extra effect: the default extension of [`Bwbn`](super::Bwbn).
@@ -140,6 +149,10 @@ impl<S: Scalar> Effect<S> for () {
     #[inline(always)]
     fn reads_energy(&self) -> bool {
         false
+    }
+    #[inline(always)]
+    fn is_none(&self) -> bool {
+        true
     }
 }
 
@@ -155,6 +168,10 @@ impl<S: Scalar, E: Effect<S> + ?Sized> Effect<S> for &E {
     #[inline(always)]
     fn reads_energy(&self) -> bool {
         (**self).reads_energy()
+    }
+    #[inline(always)]
+    fn is_none(&self) -> bool {
+        (**self).is_none()
     }
 }
 

@@ -106,8 +106,20 @@ fn bs32<S: Scalar>(tol: f32) -> Control<S> {
     }
 }
 
+fn series<S: Scalar>(tol: f32) -> Control<S> {
+    Control {
+        method: Method::Series,
+        tol: S::lit(tol),
+        ..Control::default_for()
+    }
+}
+
 #[cortex_m_rt::entry]
 fn main() -> ! {
+    // Plain Bouc-Wen summed as series (with an effect on it is `Dp54`).
+    case::<f32>("series-1e-5", Set::Plain, series(1e-5));
+    case::<f32>("series-1e-4", Set::Plain, series(1e-4));
+    case::<Fixed>("series-2e-4", Set::Plain, series(2e-4));
     for set in [Set::Plain, Set::All] {
         case::<f32>("default", set, Control::default_for());
         case::<f32>("tol-3e-5", set, bs32(3e-5));

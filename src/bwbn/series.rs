@@ -1,0 +1,319 @@
+//! Plain Bouc-Wen along the displacement by series ([`Method::Series`]).
+//!
+//! With every effect off (A = nu = eta = h = 1), eq. 3.4 along an increment
+//! of direction `d = sgn(du)` is autonomous in the distance `s = |u - u0|`.
+//! While z keeps its sign `sigma`, `x = |z|` obeys
+//!
+//! ```text
+//! dx/ds = d sigma (1 - c x^n),   c = beta d sigma + gamma
+//! ```
+//!
+//! **Away from z = 0** the solution is analytic in s and is summed as its
+//! Taylor series at x0. The coefficients of `p = x^n` follow from those of x
+//! by the recurrence of a power (`x p' = n x' p`), so a sub-step evaluates
+//! one `pow` however high its order:
+//!
+//! ```text
+//! x_1 = d sigma (1 - c p_0),   k x_0 p_k = sum_{j=1..k} (n j - (k - j)) x_j p_(k-j),
+//! x_(k+1) = -d sigma c p_k / (k + 1)
+//! ```
+//!
+//! The order grows until the last two terms at the sub-step's length are
+//! within the tolerance; when [`MAX_ORDER`] is reached first, the sub-step is
+//! halved until they are (the coefficients do not depend on the length, so
+//! only the sum is redone).
+//!
+//! **Near z = 0** (`|c| x^n <= NEAR`) `x^n` is not analytic and the sign of z,
+//! hence c, may change within the sub-step. There s is summed as a function of
+//! x instead, `ds/dx = 1 / (1 - c x^n)` in closed form:
+//!
+//! ```text
+//! G_c(x) = integral_0^x dxi / (1 - c xi^n) = x sum_m (c x^n)^m / (n m + 1)
+//! ```
+//!
+//! a geometric series of ratio at most `EDGE` (0.2). The distance to z = 0 is
+//! `G_c(x0)`; the x reached after a distance is found by Newton's method on
+//! `G`. The energy of eq. 3.8, `de/du = k_hys z`, is summed alike: the series
+//! of z integrated term by term, and near zero
+//! `integral x ds = H_c(x) = x^2 sum_m (c x^n)^m / (n m + 2)`.
+
+use super::base::BoucWen;
+use super::integrate::Control;
+use crate::element::StepError;
+use crate::scalar::Scalar;
+
+/// Highest order of a Taylor sub-step.
+pub const MAX_ORDER: usize = 12;
+
+/// Where the sums in x take over from the Taylor series: `|c| x^n` at most
+/// this. Near z = 0 the Taylor series' radius shrinks with x, so it would
+/// need ever shorter sub-steps.
+const NEAR: f32 = 0.1;
+
+/// How far the sums in x carry a sub-step moving away from z = 0: to
+/// `|c| x^n = EDGE`, beyond `NEAR` so that the Taylor series takes the next
+/// sub-step whatever the rounding at the edge (their ratio is then 0.2:
+/// 24 terms reach `0.2^24 = 2e-17`).
+const EDGE: f32 = 0.2;
+
+/// Most terms of the sums in x and Newton iterations (Newton converges
+/// quadratically from `G(x) ~ x`).
+const MAX_TERMS: usize = 24;
+const MAX_NEWTON: usize = 16;
+
+/// The end of an increment.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct End<S> {
+    /// Hysteretic displacement.
+    pub z: S,
+    /// Hysteretic energy.
+    pub energy: S,
+    /// dz/du at the end, along the increment.
+    pub dz_du: S,
+}
+
+/// Plain Bouc-Wen on one increment.
+pub(crate) struct Branch<'a, S: Scalar> {
+    base: &'a BoucWen<S>,
+    /// Direction of the increment, +1 or -1.
+    d: S,
+    /// Absolute tolerance of z.
+    atol: S,
+}
+
+impl<'a, S: Scalar> Branch<'a, S> {
+    /// The coefficient c for z of sign `sigma`.
+    fn c(&self, sigma: S) -> S {
+        self.base.beta * self.d * sigma + self.base.gamma
+    }
+
+    /// Whether `|c| x^n` puts x in the region of the sum in x.
+    fn near(&self, c: S, xn: S) -> bool {
+        (c * xn).abs() <= S::lit(NEAR)
+    }
+
+    /// `(G_c(x), H_c(x), x^n)`.
+    fn sums(&self, c: S, x: S) -> (S, S, S) {
+        if x == S::ZERO {
+            return (S::ZERO, S::ZERO, S::ZERO);
+        }
+        let n = self.base.n;
+        let xn = x.powf(n);
+        let q = c * xn;
+        let (mut g, mut h, mut qm, mut nm) = (S::ONE, S::ONE / S::from_i32(2), S::ONE, S::ZERO);
+        for _ in 0..MAX_TERMS {
+            qm *= q;
+            nm += n;
+            let (dg, dh) = (qm / (nm + S::ONE), qm / (nm + S::from_i32(2)));
+            g += dg;
+            h += dh;
+            if dg.abs() <= S::EPSILON * g {
+                break;
+            }
+        }
+        (x * g, x * x * h, xn)
+    }
+
+    /// The x in `[0, hi]` with `G_c(x) = target`, its `H_c` and `x^n`.
+    fn solve(&self, c: S, target: S, hi: S) -> Result<(S, S, S), StepError> {
+        let mut x = target.min(hi);
+        for _ in 0..MAX_NEWTON {
+            let (g, h, xn) = self.sums(c, x);
+            // G' = 1 / (1 - c x^n).
+            let next = (x - (g - target) * (S::ONE - c * xn)).max(S::ZERO).min(hi);
+            if (next - x).abs() <= S::from_i32(4) * (S::EPSILON * next + S::MIN_POSITIVE) {
+                let (_, h, xn) = if next == x {
+                    (g, h, xn)
+                } else {
+                    self.sums(c, next)
+                };
+                return Ok((next, h, xn));
+            }
+            x = next;
+        }
+        Err(StepError::ToleranceNotMet)
+    }
+
+    /// The x at which `|c| x^n = EDGE` (no limit when c = 0).
+    fn edge(&self, c: S) -> S {
+        if c == S::ZERO {
+            S::MAX
+        } else {
+            let edge = (S::lit(EDGE) / c.abs()).powf(S::ONE / self.base.n);
+            if edge.is_finite() {
+                edge
+            } else {
+                S::MAX
+            }
+        }
+    }
+
+    /// A sub-step by the sums in x from `z` (in their region) over at most
+    /// `len`: the new z, the distance covered, `∫ z ds` and dz/du at the end.
+    fn near_zero(&self, z: S, len: S) -> Result<(S, S, S, S), StepError> {
+        let x0 = z.abs();
+        let mut sigma = if z == S::ZERO { self.d } else { z.signum0() };
+        let mut used = S::ZERO;
+        let mut area = S::ZERO;
+        if z != S::ZERO && self.d * sigma < S::ZERO {
+            // Towards zero: G_c(x0) to reach it.
+            let c = self.c(sigma);
+            let (to_zero, h0, _) = self.sums(c, x0);
+            if len <= to_zero {
+                let (x, h, xn) = self.solve(c, to_zero - len, x0)?;
+                return Ok((sigma * x, len, sigma * (h0 - h), S::ONE - c * xn));
+            }
+            used = to_zero;
+            area = sigma * h0;
+            sigma = -sigma;
+        }
+        // Away from zero (from x0, or from 0 after crossing it), up to the
+        // edge of the region.
+        let c = self.c(sigma);
+        let (g_start, h_start) = if used > S::ZERO || z == S::ZERO {
+            (S::ZERO, S::ZERO)
+        } else {
+            let (g, h, _) = self.sums(c, x0);
+            (g, h)
+        };
+        let edge = self.edge(c);
+        let (x, h, xn) = self.solve(c, g_start + (len - used), edge)?;
+        if x < edge {
+            return Ok((
+                sigma * x,
+                len,
+                area + sigma * (h - h_start),
+                S::ONE - c * xn,
+            ));
+        }
+        let (g_edge, h_edge, xn_edge) = self.sums(c, edge);
+        Ok((
+            sigma * edge,
+            used + (g_edge - g_start),
+            area + sigma * (h_edge - h_start),
+            S::ONE - c * xn_edge,
+        ))
+    }
+
+    /// A Taylor sub-step from `z != 0` over at most `len`, or `None` when
+    /// z is in the region of the sums in x.
+    #[allow(clippy::type_complexity)]
+    fn taylor(&self, z: S, len: S) -> Result<Option<(S, S, S, S)>, StepError> {
+        let sigma = z.signum0();
+        let x0 = z.abs();
+        let c = self.c(sigma);
+        let n = self.base.n;
+        let mut p = [S::ZERO; MAX_ORDER + 1];
+        let mut x = [S::ZERO; MAX_ORDER + 1];
+        p[0] = x0.powf(n);
+        if self.near(c, p[0]) {
+            return Ok(None);
+        }
+        let ds = self.d * sigma;
+        x[0] = x0;
+        x[1] = ds * (S::ONE - c * p[0]);
+        let inv_x0 = S::ONE / x0;
+        let mut s = len;
+        let mut top = MAX_ORDER;
+        let mut prev = x[1].abs() * s;
+        let mut s_k = s;
+        let (n1, minus_dsc) = (n + S::ONE, -(ds * c));
+        for k in 1..MAX_ORDER {
+            let mut acc = S::ZERO;
+            for j in 1..=k {
+                // n j - (k - j)
+                acc += (n1 * S::from_i32(j as i32) - S::from_i32(k as i32)) * x[j] * p[k - j];
+            }
+            p[k] = acc * (inv_x0 * S::recip_int(k));
+            x[k + 1] = p[k] * (minus_dsc * S::recip_int(k + 1));
+            s_k *= s;
+            let t = x[k + 1].abs() * s_k;
+            if k >= 2 && t + prev <= self.atol {
+                top = k + 1;
+                break;
+            }
+            prev = t;
+        }
+        let mut halvings = 0;
+        while top == MAX_ORDER && !self.small(&x, s) {
+            s = s / S::from_i32(2);
+            halvings += 1;
+            if halvings > 64 || !(s > S::ZERO) {
+                return Err(StepError::ToleranceNotMet);
+            }
+        }
+        // A sum that overshoots z = 0 (possible only at the edge of the
+        // series' radius) is summed again over half the length.
+        for _ in 0..64 {
+            let (v, dv, iv) = Self::sum(&x, top, s);
+            if v > S::ZERO && v.is_finite() {
+                return Ok(Some((sigma * v, s, sigma * iv, ds * dv)));
+            }
+            s = s / S::from_i32(2);
+        }
+        Err(StepError::NonFiniteState)
+    }
+
+    /// Horner: `x(s)`, `dx/ds` and `∫_0^s x` of the series `x[..=top]`.
+    fn sum(x: &[S; MAX_ORDER + 1], top: usize, s: S) -> (S, S, S) {
+        let (mut v, mut dv) = (x[top], S::from_i32(top as i32) * x[top]);
+        let mut iv = x[top] * S::recip_int(top + 1);
+        for k in (0..top).rev() {
+            v = v * s + x[k];
+            if k >= 1 {
+                dv = dv * s + S::from_i32(k as i32) * x[k];
+            }
+            iv = iv * s + x[k] * S::recip_int(k + 1);
+        }
+        (v, dv, iv * s)
+    }
+
+    /// Whether the last two terms of a full-order series are within the
+    /// tolerance at length `s`.
+    fn small(&self, x: &[S; MAX_ORDER + 1], s: S) -> bool {
+        let mut s_k = S::ONE;
+        for _ in 0..MAX_ORDER - 1 {
+            s_k *= s;
+        }
+        (x[MAX_ORDER - 1].abs() + x[MAX_ORDER].abs() * s) * s_k <= self.atol
+    }
+}
+
+/// Integrates plain Bouc-Wen from `(z0, energy0)` over `len > 0` in direction
+/// `d`, in at most `ctl.max_substeps` sub-steps; `atol` is z's absolute
+/// tolerance.
+pub(crate) fn advance<S: Scalar>(
+    base: &BoucWen<S>,
+    ctl: &Control<S>,
+    atol: S,
+    (z0, energy0): (S, S),
+    d: S,
+    len: S,
+) -> Result<End<S>, StepError> {
+    let k_hys = (S::ONE - base.alpha) * base.k0;
+    let b = Branch { base, d, atol };
+    let (mut z, mut area, mut left) = (z0, S::ZERO, len);
+    for _ in 0..ctl.max_substeps {
+        let step = if z == S::ZERO {
+            None
+        } else {
+            b.taylor(z, left)?
+        };
+        let (z1, used, a, dz) = match step {
+            Some(s) => s,
+            None => b.near_zero(z, left)?,
+        };
+        z = z1;
+        area += a;
+        if used >= left {
+            let energy = energy0 + d * k_hys * area;
+            return Ok(End {
+                z,
+                energy,
+                dz_du: dz,
+            });
+        }
+        left -= used;
+    }
+    Err(StepError::ToleranceNotMet)
+}
