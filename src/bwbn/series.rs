@@ -219,15 +219,21 @@ impl<'a, S: Scalar> Branch<'a, S> {
         let mut s_k = s;
         let (n1, minus_dsc) = (n + S::ONE, -(ds * c));
         for k in 1..MAX_ORDER {
+            // sum_{j=1..k} (n j - (k - j)) x_j p_(k-j), by iterators: no
+            // index to check.
+            let kf = S::from_i32(k as i32);
             let mut acc = S::ZERO;
-            for j in 1..=k {
-                // n j - (k - j)
-                acc += (n1 * S::from_i32(j as i32) - S::from_i32(k as i32)) * x[j] * p[k - j];
+            let pairs = x.iter().skip(1).take(k).zip(p.iter().take(k).rev());
+            for (j, (&xj, &pkj)) in (1..).zip(pairs) {
+                acc += (n1 * S::from_i32(j) - kf) * xj * pkj;
             }
-            p[k] = acc * (inv_x0 * S::recip_int(k));
-            x[k + 1] = p[k] * (minus_dsc * S::recip_int(k + 1));
+            let pk = acc * (inv_x0 * S::recip_int(k));
+            let xk1 = pk * (minus_dsc * S::recip_int(k + 1));
+            if let (Some(p_k), Some(x_k1)) = (p.get_mut(k), x.get_mut(k + 1)) {
+                (*p_k, *x_k1) = (pk, xk1);
+            }
             s_k *= s;
-            let t = x[k + 1].abs() * s_k;
+            let t = xk1.abs() * s_k;
             if k >= 2 && t + prev <= self.atol {
                 top = k + 1;
                 break;
@@ -256,14 +262,13 @@ impl<'a, S: Scalar> Branch<'a, S> {
 
     /// Horner: `x(s)`, `dx/ds` and `∫_0^s x` of the series `x[..=top]`.
     fn sum(x: &[S; MAX_ORDER + 1], top: usize, s: S) -> (S, S, S) {
-        let (mut v, mut dv) = (x[top], S::from_i32(top as i32) * x[top]);
-        let mut iv = x[top] * S::recip_int(top + 1);
-        for k in (0..top).rev() {
-            v = v * s + x[k];
+        let (mut v, mut dv, mut iv) = (S::ZERO, S::ZERO, S::ZERO);
+        for (k, &xk) in x.iter().enumerate().take(top + 1).rev() {
+            v = v * s + xk;
             if k >= 1 {
-                dv = dv * s + S::from_i32(k as i32) * x[k];
+                dv = dv * s + S::from_i32(k as i32) * xk;
             }
-            iv = iv * s + x[k] * S::recip_int(k + 1);
+            iv = iv * s + xk * S::recip_int(k + 1);
         }
         (v, dv, iv * s)
     }
