@@ -86,8 +86,8 @@ impl<S: Scalar> Control<S> {
     ///   the same tolerance wherever an effect is on (host use: force error
     ///   below 1e-6 of peak against a converged solution on the reference
     ///   histories, `tests/bwbn_opensees.rs`; plain Bouc-Wen summed as series
-    ///   is within 4.6e-11 of peak there, `tests/bwbn_series.rs`, at about a
-    ///   third of `Dp54`'s time);
+    ///   is within 4.6e-11 of peak there, `tests/bwbn_series.rs`, in less than
+    ///   half of `Dp54`'s time);
     /// * `f32`: `Bs32` at 1e-5, at most 64 sub-steps (error below 1e-4 of peak
     ///   against `f64`, proven on the Cortex-M4F by the shared test cases);
     /// * fixed point: `Bs32` at 2e-4, at most 64 sub-steps (below 1e-3 of

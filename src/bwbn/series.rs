@@ -1,4 +1,4 @@
-//! Plain Bouc-Wen along the displacement by series ([`Method::Series`]).
+//! Plain Bouc-Wen along the displacement by series ([`Method::Series`](super::Method::Series)).
 //!
 //! With every effect off (A = nu = eta = h = 1), eq. 3.4 along an increment
 //! of direction `d = sgn(du)` is autonomous in the distance `s = |u - u0|`.
@@ -49,7 +49,7 @@ pub const MAX_ORDER: usize = 12;
 /// `LEN - 1`: the mask never changes an index (all are at most `MAX_ORDER`),
 /// but it lets the compiler see that none can be out of bounds, so no panic
 /// path reaches the firmware, at one instruction an index (iterators did the
-/// same at 35% more instructions a step on the Cortex-M4F).
+/// same at 33% more instructions a step on the Cortex-M4F: 1,072 against 805).
 const LEN: usize = 16;
 const MASK: usize = LEN - 1;
 
