@@ -19,35 +19,10 @@ use std::hint::black_box;
 #[path = "../tests/common/mod.rs"]
 mod common;
 
-/// The reference cases' parameters (`cases.json`): k0 6, alpha 0.2, n 1.2,
-/// beta 2, gamma -1, with the degradation of `BoucWen_degrade` and the
-/// pinching of `BWBN_pinch` switched on as `set` asks.
+/// The reference cases' parameters (`cases.json`) with the effects of `set`,
+/// Zu by OpenSees' rule.
 fn params(set: EffectSet) -> BwbnParams<f64> {
-    let values: [(&str, f64); 14] = [
-        ("k0", 6.0),
-        ("alpha", 0.2),
-        ("n", 1.2),
-        ("beta", 2.0),
-        ("gamma", -1.0),
-        ("delta_A", 2e-4),
-        ("delta_nu", 5e-4),
-        ("delta_eta", 5e-4),
-        ("energy_limit", 4500.0),
-        ("zeta0", 0.9),
-        ("p", 0.01),
-        ("q", 0.1),
-        ("psi0", 0.2),
-        ("delta_psi", 5e-4),
-    ];
-    BwbnParams::from_named(set, |name| {
-        values
-            .iter()
-            .chain(&[("lambda", 0.5)])
-            .find(|(k, _)| *k == name)
-            .map(|(_, v)| *v)
-    })
-    .expect("valid reference parameters")
-    .with_zu_rule(ZuRule::OpenSees)
+    common::reference_params(set).with_zu_rule(ZuRule::OpenSees)
 }
 
 fn bench(c: &mut Criterion) {

@@ -25,21 +25,7 @@ fn named(set: EffectSet, extra: &[(&str, f64)]) -> BwbnParams<f64> {
 
 /// All four thesis effects at the strength of the OpenSees reference cases.
 fn full() -> BwbnParams<f64> {
-    named(
-        EffectSet::BWBN,
-        &[
-            ("delta_A", 2e-4),
-            ("delta_nu", 5e-4),
-            ("delta_eta", 5e-4),
-            ("zeta0", 0.9),
-            ("p", 0.01),
-            ("q", 0.1),
-            ("psi0", 0.2),
-            ("delta_psi", 5e-4),
-            ("lambda", 0.5),
-            ("energy_limit", 4500.0),
-        ],
-    )
+    common::reference_params(EffectSet::BWBN)
 }
 
 fn drive(el: &mut Bwbn<f64>, history: &[f64]) -> Vec<f64> {

@@ -11,61 +11,19 @@ mod common;
 use hysteresis::bwbn::{Bwbn, BwbnParams, Control, EffectKind, EffectSet, Method, ZuRule};
 use hysteresis::Element;
 
-fn base(name: &str) -> Option<f64> {
-    match name {
-        "k0" => Some(6.0),
-        "alpha" => Some(0.2),
-        "n" => Some(1.2),
-        "beta" => Some(2.0),
-        "gamma" => Some(-1.0),
-        _ => None,
-    }
-}
-
-/// The parameter sets of the reference cases, translated to our names
-/// (`cases.json`).
+/// The parameter sets of the reference cases (`cases.json`), translated to
+/// our names in [`common::reference_params`]: the case picks the effects.
 fn case_params(case: &str) -> BwbnParams<f64> {
-    let degrade = EffectSet::NONE
-        .with(EffectKind::ADegradation)
-        .with(EffectKind::StrengthDegradation)
-        .with(EffectKind::StiffnessDegradation);
-    let pinch = EffectSet::NONE.with(EffectKind::Pinching);
-    let (set, extra): (EffectSet, &[(&str, f64)]) = match case {
-        "BoucWen_plain" | "BWBN_plain" | "BoucWenOriginal_plain" => (EffectSet::NONE, &[]),
-        // A = A0 - dA e, nu = 1 + dnu e, eta = 1 + deta e. A reaches zero at
-        // e = 5000 kN*mm, so the set is only valid below that; the history
-        // reaches 785 kN*mm (a step past the limit would fail the run).
-        "BoucWen_degrade" => (
-            degrade,
-            &[
-                ("delta_A", 2e-4),
-                ("delta_nu", 5e-4),
-                ("delta_eta", 5e-4),
-                ("energy_limit", 4500.0),
-            ],
-        ),
-        "BWBN_pinch" => (
-            pinch,
-            &[
-                ("zeta0", 0.9),
-                ("p", 0.01),
-                ("q", 0.1),
-                ("psi0", 0.2),
-                ("delta_psi", 5e-4),
-                ("lambda", 0.5),
-            ],
-        ),
+    let set = match case {
+        "BoucWen_plain" | "BWBN_plain" | "BoucWenOriginal_plain" => EffectSet::NONE,
+        "BoucWen_degrade" => EffectSet::NONE
+            .with(EffectKind::ADegradation)
+            .with(EffectKind::StrengthDegradation)
+            .with(EffectKind::StiffnessDegradation),
+        "BWBN_pinch" => EffectSet::NONE.with(EffectKind::Pinching),
         other => panic!("no such case {other}"),
     };
-    BwbnParams::from_named(set, |n| {
-        extra
-            .iter()
-            .find(|(k, _)| *k == n)
-            .map(|(_, v)| *v)
-            .or_else(|| base(n))
-    })
-    .unwrap()
-    .with_zu_rule(ZuRule::OpenSees)
+    common::reference_params(set).with_zu_rule(ZuRule::OpenSees)
 }
 
 fn run(params: BwbnParams<f64>, control: Control<f64>, history: &[f64]) -> Vec<(f64, f64)> {

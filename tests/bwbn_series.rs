@@ -54,10 +54,9 @@ fn errors(a: &[[f64; 3]], b: &[[f64; 3]], k0: f64) -> [f64; 3] {
     ]
 }
 
-/// The parameters of the OpenSees reference cases: k0 6, alpha 0.2, n 1.2,
-/// beta 2, gamma -1 (Zu = 1).
+/// The parameters of the OpenSees reference cases, plain (Zu = 1).
 fn reference_params() -> BwbnParams<f64> {
-    BwbnParams::plain(BoucWen::new(6.0, 0.2, 1.2, 2.0, -1.0).unwrap())
+    common::reference_params(EffectSet::NONE)
 }
 
 /// On the reference history (200 steps a cycle, up to 8 mm) the force error
@@ -162,25 +161,7 @@ fn one_huge_increment_reaches_zu() {
 /// element says so: the same element bit for bit.
 #[test]
 fn effects_on_integrate_as_dormand_prince() {
-    let values = [
-        ("k0", 6.0),
-        ("alpha", 0.2),
-        ("n", 1.2),
-        ("beta", 2.0),
-        ("gamma", -1.0),
-        ("delta_nu", 5e-4),
-        ("delta_eta", 5e-4),
-        ("zeta0", 0.9),
-        ("p", 0.01),
-        ("q", 0.1),
-        ("psi0", 0.2),
-        ("delta_psi", 5e-4),
-        ("lambda", 0.5),
-    ];
-    let p = BwbnParams::from_named(EffectSet::BWBN, |name| {
-        values.iter().find(|(k, _)| *k == name).map(|(_, v)| *v)
-    })
-    .unwrap();
+    let p = common::reference_params(EffectSet::BWBN);
     let h = common::reference_history();
     let mut el = Bwbn::with_extra(p, (), control(Method::Series, 1e-9, 1000));
     assert_eq!(el.control().method, Method::Dp54);

@@ -40,25 +40,7 @@ impl Scalar for f64 {
     }
     #[inline(always)]
     fn recip_int(k: usize) -> Self {
-        const RECIP: [f64; 17] = [
-            0.0,
-            1.0,
-            1.0 / 2.0,
-            1.0 / 3.0,
-            1.0 / 4.0,
-            1.0 / 5.0,
-            1.0 / 6.0,
-            1.0 / 7.0,
-            1.0 / 8.0,
-            1.0 / 9.0,
-            1.0 / 10.0,
-            1.0 / 11.0,
-            1.0 / 12.0,
-            1.0 / 13.0,
-            1.0 / 14.0,
-            1.0 / 15.0,
-            1.0 / 16.0,
-        ];
+        const RECIP: [f64; 17] = super::recip_table!(f64);
         match RECIP.get(k) {
             Some(&r) if k > 0 => r,
             _ => 1.0 / k as f64,

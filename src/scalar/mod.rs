@@ -28,6 +28,34 @@ pub use fixed::Fixed;
 use core::fmt::Debug;
 use core::ops::{Add, AddAssign, Div, Mul, MulAssign, Neg, Sub, SubAssign};
 
+/// `[0, 1/1, 1/2, ..., 1/16]` in the float type `$t`, each quotient rounded
+/// once at compile time: the table of [`Scalar::recip_int`] for `f32` and
+/// `f64`.
+macro_rules! recip_table {
+    ($t:ty) => {
+        [
+            0.0 as $t,
+            1.0,
+            1.0 / 2.0,
+            1.0 / 3.0,
+            1.0 / 4.0,
+            1.0 / 5.0,
+            1.0 / 6.0,
+            1.0 / 7.0,
+            1.0 / 8.0,
+            1.0 / 9.0,
+            1.0 / 10.0,
+            1.0 / 11.0,
+            1.0 / 12.0,
+            1.0 / 13.0,
+            1.0 / 14.0,
+            1.0 / 15.0,
+            1.0 / 16.0,
+        ]
+    };
+}
+pub(crate) use recip_table;
+
 /// A real number type the models can be computed in.
 ///
 /// Implementations must make `+ - * /` total (no panics): floats follow IEEE 754,
@@ -163,5 +191,16 @@ mod tests {
         generic_identities::<f64>(1e-15);
         generic_identities::<f32>(1e-6);
         generic_identities::<Fixed>(1e-4);
+    }
+
+    /// The tables of `recip_int` hold 1/k rounded once, as the division does,
+    /// and the division takes over past them.
+    #[test]
+    fn recip_int_is_one_over_k() {
+        for k in 1..40usize {
+            assert_eq!(f64::recip_int(k).to_bits(), (1.0 / k as f64).to_bits());
+            assert_eq!(f32::recip_int(k).to_bits(), (1.0 / k as f32).to_bits());
+            assert_eq!(Fixed::recip_int(k), Fixed::ratio(1, k as i32));
+        }
     }
 }

@@ -2,7 +2,38 @@
 //! `../shared/data`.
 #![allow(dead_code)]
 
+use hysteresis::bwbn::{BwbnParams, EffectSet};
 use std::path::PathBuf;
+
+/// The parameters of the OpenSees reference cases (`cases.json`) with the
+/// effects of `set` switched on: k0 6, alpha 0.2, n 1.2, beta 2, gamma -1,
+/// the degradation of `BoucWen_degrade` and the pinching of `BWBN_pinch`.
+/// Degradation: A = A0 - dA e, nu = 1 + dnu e, eta = 1 + deta e. A reaches
+/// zero at e = 5000 kN*mm, so the set is only valid below that (energy limit
+/// 4500); the reference history reaches 785 kN*mm.
+pub fn reference_params(set: EffectSet) -> BwbnParams<f64> {
+    const VALUES: [(&str, f64); 15] = [
+        ("k0", 6.0),
+        ("alpha", 0.2),
+        ("n", 1.2),
+        ("beta", 2.0),
+        ("gamma", -1.0),
+        ("delta_A", 2e-4),
+        ("delta_nu", 5e-4),
+        ("delta_eta", 5e-4),
+        ("energy_limit", 4500.0),
+        ("zeta0", 0.9),
+        ("p", 0.01),
+        ("q", 0.1),
+        ("psi0", 0.2),
+        ("delta_psi", 5e-4),
+        ("lambda", 0.5),
+    ];
+    BwbnParams::from_named(set, |name| {
+        VALUES.iter().find(|(k, _)| *k == name).map(|(_, v)| *v)
+    })
+    .expect("valid reference parameters")
+}
 
 /// Path of a file in the shared data folder.
 pub fn data(rel: &str) -> PathBuf {
