@@ -207,8 +207,9 @@ impl<S: Scalar, X: Effect<S>> Bwbn<S, X> {
 
     /// Plain Bouc-Wen from the committed state to displacement `u` by
     /// [`series`]. Kept out of line: inlined, it changed how the compiler laid
-    /// out the Runge-Kutta path, which in Q15.16 then took up to 15% more
-    /// instructions a step on the Cortex-M4F.
+    /// out the Runge-Kutta path of the same function, whose Q15.16 steps then
+    /// took 15% more instructions on the Cortex-M4F than before `Series`
+    /// existed; out of line, 7% (`docs/benchmarks.md`).
     #[inline(never)]
     fn advance_series(&self, u: S, dir: S, len: S) -> Result<State<S>, StepError> {
         let c = &self.committed;
