@@ -101,4 +101,10 @@ impl Effect<f64> for Extras {
             e.stiffness(base, at, k);
         }
     }
+    /// No custom effect (the usual case): plain Bouc-Wen can be summed as
+    /// series, as in the dual-number simulation of the same model.
+    #[inline]
+    fn is_none(&self) -> bool {
+        self.0.iter().all(|e| e.is_none())
+    }
 }
