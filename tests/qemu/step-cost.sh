@@ -21,7 +21,7 @@ for pair in thumbv7em-none-eabihf:mps2-an386 thumbv7m-none-eabi:mps2-an385; do
   echo "$target ($machine): instructions per step, reference history"
   paste -d' ' <(grep '^case' "$log/cases" | awk '{ print $2 }') \
     <(grep '^bench' "$log/plugin" | awk '{ print $3 }') |
-    awk '$1 ~ /\/step$/ { n[$1]++; sum[$1] += $2; if ($2 > max[$1]) max[$1] = $2; next }
+    awk '$1 ~ /step$/ { n[$1]++; sum[$1] += $2; if ($2 > max[$1]) max[$1] = $2; next }
          $1 ~ /^history\// { split($1, h, "/"); loop[h[2]] = $2 / 3600 }
          $1 ~ /^phm\// { split($1, h, "/"); printf "  %-28s %8.0f  (%.0f net of the history loop)\n", $1, $2 / 3600, $2 / 3600 - loop[h[2]]; next }
          { printf "  %-28s %8.0f\n", $1, $2 / 3600 }

@@ -46,10 +46,10 @@ fn case<S: Scalar>(name: &str, set: Set, control: Control<S>) {
 
 /// The same history with the markers around each step, one `case NAME/step`
 /// line per step: `step-cost.sh` reports the mean and the worst step.
-fn per_step<S: Scalar>(set: Set) {
-    let mut el = Bwbn::<S>::new(black_box(set.params_q16()));
+fn per_step<S: Scalar>(set: Set, label: &str, control: Control<S>) {
+    let mut el = Bwbn::<S>::new(black_box(set.params_q16())).with_control(control);
     for i in 1..POINTS {
-        defmt::println!("case {}/{}/step", set.name(), S::NAME);
+        defmt::println!("case {}/{}/{}", set.name(), S::NAME, label);
         bench_start();
         let ok = el.set_trial(black_box(displacement::<S>(i))).is_ok();
         el.commit();
@@ -132,7 +132,10 @@ fn main() -> ! {
     history_loop::<Fixed>();
     phm::<f32>();
     phm::<Fixed>();
-    per_step::<f32>(Set::All);
-    per_step::<Fixed>(Set::All);
+    per_step::<f32>(Set::All, "step", Control::default_for());
+    per_step::<Fixed>(Set::All, "step", Control::default_for());
+    per_step::<f32>(Set::Plain, "step", Control::default_for());
+    per_step::<f32>(Set::Plain, "series-step", series(1e-5));
+    per_step::<Fixed>(Set::Plain, "series-step", series(2e-4));
     hysteresis_qemu::exit(0)
 }
