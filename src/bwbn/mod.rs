@@ -224,7 +224,7 @@ impl<S: Scalar, X: Effect<S>> Bwbn<S, X> {
             energy: end.energy,
             dir,
             dz: end.dz_du,
-            de: (S::ONE - base.alpha) * base.k0 * end.z,
+            de: end.de_du,
             h: c.h,
         })
     }

@@ -38,6 +38,7 @@
 //! `integral x ds = H_c(x) = x^2 sum_m (c x^n)^m / (n m + 2)`.
 
 use super::base::BoucWen;
+use super::effects::Stiffness;
 use super::integrate::Control;
 use crate::element::StepError;
 use crate::scalar::Scalar;
@@ -78,10 +79,12 @@ pub(crate) struct End<S> {
     pub energy: S,
     /// dz/du at the end, along the increment.
     pub dz_du: S,
+    /// d(energy)/du at the end, `k_hys z`.
+    pub de_du: S,
 }
 
 /// Plain Bouc-Wen on one increment.
-pub(crate) struct Branch<'a, S: Scalar> {
+struct Branch<'a, S: Scalar> {
     base: &'a BoucWen<S>,
     /// Direction of the increment, +1 or -1.
     d: S,
@@ -161,8 +164,7 @@ impl<'a, S: Scalar> Branch<'a, S> {
     fn near_zero(&self, z: S, len: S) -> Result<(S, S, S, S), StepError> {
         let x0 = z.abs();
         let mut sigma = if z == S::ZERO { self.d } else { z.signum0() };
-        let mut used = S::ZERO;
-        let mut area = S::ZERO;
+        let (mut used, mut area, mut x_start) = (S::ZERO, S::ZERO, x0);
         if z != S::ZERO && self.d * sigma < S::ZERO {
             // Towards zero: G_c(x0) to reach it.
             let c = self.c(sigma);
@@ -174,16 +176,12 @@ impl<'a, S: Scalar> Branch<'a, S> {
             used = to_zero;
             area = sigma * h0;
             sigma = -sigma;
+            x_start = S::ZERO;
         }
         // Away from zero (from x0, or from 0 after crossing it), up to the
         // edge of the region.
         let c = self.c(sigma);
-        let (g_start, h_start) = if used > S::ZERO || z == S::ZERO {
-            (S::ZERO, S::ZERO)
-        } else {
-            let (g, h, _) = self.sums(c, x0);
-            (g, h)
-        };
+        let (g_start, h_start, _) = self.sums(c, x_start);
         let edge = self.edge(c);
         let (x, h, xn) = self.solve(c, g_start + (len - used), edge)?;
         if x < edge {
@@ -303,7 +301,7 @@ pub(crate) fn advance<S: Scalar>(
     d: S,
     len: S,
 ) -> Result<End<S>, StepError> {
-    let k_hys = (S::ONE - base.alpha) * base.k0;
+    let k_hys = Stiffness::plain(base).hys;
     let b = Branch { base, d, atol };
     let (mut z, mut area, mut left) = (z0, S::ZERO, len);
     for _ in 0..ctl.max_substeps {
@@ -324,6 +322,7 @@ pub(crate) fn advance<S: Scalar>(
                 z,
                 energy,
                 dz_du: dz,
+                de_du: k_hys * z,
             });
         }
         left -= used;

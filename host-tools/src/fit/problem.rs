@@ -73,8 +73,8 @@ impl Problem {
         let target = Target::new(&exp, ENVELOPE_FLOOR);
         // Fitting needs accurate, smooth predictions but not 1e-9: the
         // finite-difference Jacobian steps are 1e-6 of the parameter ranges.
-        // Plain Bouc-Wen driven by displacement is summed as series (6.4x
-        // faster on a `bw` fit of Lehman 415, the same NRMSE to 8 digits);
+        // Plain Bouc-Wen driven by displacement is summed as series (12x
+        // faster on a `bw` fit of Lehman 415, NRMSE the same to 7 digits);
         // with any effect on, and for the oscillator, it is Dormand-Prince.
         let control = Control {
             method: Method::Series,
