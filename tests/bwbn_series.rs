@@ -157,20 +157,27 @@ fn one_huge_increment_reaches_zu() {
     assert!((r.tangent - 1.2).abs() < 1e-9, "tangent {}", r.tangent);
 }
 
-/// With an effect on the method integrates by Dormand-Prince, and the
-/// element says so: the same element bit for bit.
+/// With an effect on the method integrates by the arithmetic's Runge-Kutta
+/// pair (Dormand-Prince in `f64`, Bogacki-Shampine in `f32` and fixed point),
+/// and the element says so: the same element bit for bit.
 #[test]
-fn effects_on_integrate_as_dormand_prince() {
-    let p = common::reference_params(EffectSet::BWBN);
-    let h = common::reference_history();
-    let mut el = Bwbn::with_extra(p, (), control(Method::Series, 1e-9, 1000));
-    assert_eq!(el.control().method, Method::Dp54);
-    let series = run(&mut el, &h);
-    let dp54 = run(
-        &mut Bwbn::with_extra(p, (), control(Method::Dp54, 1e-9, 1000)),
-        &h,
-    );
-    assert_eq!(series, dp54);
+fn effects_on_integrate_by_the_arithmetics_pair() {
+    fn check<S: Scalar>(pair: Method, tol: f64, max_substeps: u16) {
+        let p = common::reference_params_in::<S>(EffectSet::BWBN);
+        let h = common::reference_history();
+        let mut el = Bwbn::with_extra(p, (), control(Method::Series, tol, max_substeps));
+        assert_eq!(el.control().method, pair, "{}", S::NAME);
+        assert_eq!(Control::<S>::pair_for(), pair);
+        let series = run(&mut el, &h);
+        let direct = run(
+            &mut Bwbn::with_extra(p, (), control(pair, tol, max_substeps)),
+            &h,
+        );
+        assert_eq!(series, direct, "{}", S::NAME);
+    }
+    check::<f64>(Method::Dp54, 1e-9, 1000);
+    check::<f32>(Method::Bs32, 1e-5, 64);
+    check::<Fixed>(Method::Bs32, 2e-4, 64);
 }
 
 /// In `f32` at 1e-5 and in Q15.16 at 2e-4 the method stays within the bounds

@@ -17,13 +17,15 @@
 //! * [`Method::Dp54`]: Dormand-Prince 5(4), 6 derivative evaluations a sub-step;
 //!   the host's integrator wherever an effect is on.
 //! * [`Method::Bs32`]: Bogacki-Shampine 3(2), 3 evaluations a sub-step; the
-//!   default for `f32` and fixed point, where the tolerance is looser.
+//!   integrator of `f32` and fixed point wherever an effect is on, where the
+//!   tolerance is looser.
 //! * [`Method::Series`]: for the displacement-driven element with plain
 //!   Bouc-Wen (no effect on), the increment summed as series in the
 //!   displacement ([`series`](super::series)): one `pow` a sub-step instead of
 //!   one a stage, about one sub-step an increment. Wherever an effect is on,
-//!   and in the oscillator [`Sdof`](super::Sdof), it integrates as `Dp54`.
-//!   The host default.
+//!   and in the oscillator [`Sdof`](super::Sdof), it integrates by the
+//!   arithmetic's pair ([`Control::pair_for`]: `Dp54` in `f64`, `Bs32` in
+//!   `f32` and fixed point). The default in every arithmetic.
 //! * [`Method::BackwardEuler`]: one implicit Euler step per increment, solved
 //!   by Newton's method: the scheme of OpenSees' `BoucWen` and `BWBN`
 //!   materials, kept to reproduce their results. Not error-controlled.
@@ -44,7 +46,8 @@ pub enum Method {
     /// Bogacki-Shampine 3(2), adaptive.
     Bs32,
     /// Plain Bouc-Wen summed as series in u, of adaptive order and length
-    /// (`Dp54` where an effect is on, and for the oscillator).
+    /// (the arithmetic's pair, [`Control::pair_for`], where an effect is on,
+    /// and for the oscillator).
     Series,
     /// One backward-Euler step per increment (OpenSees' scheme), Newton-solved.
     BackwardEuler,
@@ -80,28 +83,46 @@ pub struct Control<S> {
 }
 
 impl<S: Scalar> Control<S> {
-    /// The default for the arithmetic `S`:
+    /// The default for the arithmetic `S`: [`Method::Series`], which sums
+    /// plain Bouc-Wen and integrates by the arithmetic's Runge-Kutta pair
+    /// ([`Control::pair_for`]) wherever an effect is on, at the same
+    /// tolerance:
     ///
-    /// * `f64`: `Series` at 1e-9, at most 1000 sub-steps, which is `Dp54` at
-    ///   the same tolerance wherever an effect is on (host use: force error
-    ///   below 1e-6 of peak against a converged solution on the reference
-    ///   histories, `tests/bwbn_opensees.rs`; plain Bouc-Wen summed as series
-    ///   is within 4.6e-11 of peak there, `tests/bwbn_series.rs`, in less than
-    ///   half of `Dp54`'s time);
-    /// * `f32`: `Bs32` at 1e-5, at most 64 sub-steps (error below 1e-4 of peak
-    ///   against `f64`, proven on the Cortex-M4F by the shared test cases);
-    /// * fixed point: `Bs32` at 2e-4, at most 64 sub-steps (below 1e-3 of
-    ///   peak; tighter tolerances meet the Q15.16 rounding floor).
+    /// * `f64`: at 1e-9, at most 1000 sub-steps (`Dp54` with effects; force
+    ///   error below 1e-6 of peak against a converged solution on the
+    ///   reference histories, `tests/bwbn_opensees.rs`; plain Bouc-Wen summed
+    ///   as series is within 4.6e-11 of peak there, `tests/bwbn_series.rs`, in
+    ///   less than half of `Dp54`'s time);
+    /// * `f32`: at 1e-5, at most 64 sub-steps (`Bs32` with effects; error
+    ///   below 1e-4 of peak against `f64`, proven on the Cortex-M4F by the
+    ///   shared test cases; plain Bouc-Wen in 22% fewer instructions a step
+    ///   than `Bs32`, worst step 3.4x lower);
+    /// * fixed point: at 2e-4, at most 64 sub-steps (`Bs32` with effects;
+    ///   below 1e-3 of peak; tighter tolerances meet the Q15.16 rounding
+    ///   floor).
     pub fn default_for() -> Self {
-        let (method, tol, max_substeps) = match S::NAME {
-            "f64" => (Method::Series, S::lit(1e-9), 1000),
-            "f32" => (Method::Bs32, S::lit(1e-5), 64),
-            _ => (Method::Bs32, S::lit(2e-4), 64),
+        let (tol, max_substeps) = match S::NAME {
+            "f64" => (S::lit(1e-9), 1000),
+            "f32" => (S::lit(1e-5), 64),
+            _ => (S::lit(2e-4), 64),
         };
+        let method = Method::Series;
         Control {
             method,
             tol,
             max_substeps,
+        }
+    }
+
+    /// The Runge-Kutta pair that integrates where [`Method::Series`] does not
+    /// apply (an effect on, the oscillator): `Dp54` in `f64`, `Bs32` in `f32`
+    /// and fixed point, whose looser tolerances a third-order pair meets in
+    /// fewer evaluations.
+    pub fn pair_for() -> Method {
+        if S::NAME == "f64" {
+            Method::Dp54
+        } else {
+            Method::Bs32
         }
     }
 
@@ -347,7 +368,11 @@ pub(crate) fn advance<S: Scalar, const N: usize>(
     atol: &[S; N],
     h_try: S,
 ) -> Result<Advanced<S, N>, StepError> {
-    match ctl.method {
+    let method = match ctl.method {
+        Method::Series => Control::<S>::pair_for(),
+        m => m,
+    };
+    match method {
         Method::Dp54 | Method::Series => adaptive::<S, N, Dp54>(ctl, f, y0, dy0, len, atol, h_try),
         Method::Bs32 => adaptive::<S, N, Bs32>(ctl, f, y0, dy0, len, atol, h_try),
         Method::BackwardEuler => backward_euler(ctl, f, y0, len, atol),

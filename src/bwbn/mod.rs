@@ -159,13 +159,14 @@ impl<S: Scalar, X: Effect<S>> Bwbn<S, X> {
     }
 
     /// `control` as this element integrates: [`Method::Series`] sums plain
-    /// Bouc-Wen only, so with any effect on it is `Dp54` at the same
-    /// tolerance. Decided once here, not at every step.
+    /// Bouc-Wen only, so with any effect on it is the arithmetic's pair
+    /// ([`Control::pair_for`]) at the same tolerance. Decided once here, not
+    /// at every step.
     fn resolved(params: &BwbnParams<S>, extra: &X, control: Control<S>) -> Control<S> {
         let plain = params.effect_set() == EffectSet::NONE && extra.is_none();
         if control.method == Method::Series && !plain {
             Control {
-                method: Method::Dp54,
+                method: Control::<S>::pair_for(),
                 ..control
             }
         } else {
@@ -178,7 +179,7 @@ impl<S: Scalar, X: Effect<S>> Bwbn<S, X> {
         &self.params
     }
     /// The integration control, as the element integrates (`Series` becomes
-    /// `Dp54` when an effect is on).
+    /// [`Control::pair_for`] when an effect is on).
     pub fn control(&self) -> &Control<S> {
         &self.control
     }

@@ -3,6 +3,7 @@
 #![allow(dead_code)]
 
 use hysteresis::bwbn::{BwbnParams, EffectSet};
+use hysteresis::Scalar;
 use std::path::PathBuf;
 
 /// The parameters of the OpenSees reference cases (`cases.json`) with the
@@ -12,6 +13,11 @@ use std::path::PathBuf;
 /// zero at e = 5000 kN*mm, so the set is only valid below that (energy limit
 /// 4500); the reference history reaches 785 kN*mm.
 pub fn reference_params(set: EffectSet) -> BwbnParams<f64> {
+    reference_params_in(set)
+}
+
+/// [`reference_params`] in the arithmetic `S` (each value rounded once).
+pub fn reference_params_in<S: Scalar>(set: EffectSet) -> BwbnParams<S> {
     const VALUES: [(&str, f64); 15] = [
         ("k0", 6.0),
         ("alpha", 0.2),
@@ -30,7 +36,10 @@ pub fn reference_params(set: EffectSet) -> BwbnParams<f64> {
         ("lambda", 0.5),
     ];
     BwbnParams::from_named(set, |name| {
-        VALUES.iter().find(|(k, _)| *k == name).map(|(_, v)| *v)
+        VALUES
+            .iter()
+            .find(|(k, _)| *k == name)
+            .map(|(_, v)| S::from_f64(*v))
     })
     .expect("valid reference parameters")
 }
