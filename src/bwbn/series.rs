@@ -103,14 +103,17 @@ impl<'a, S: Scalar> Branch<'a, S> {
         (c * xn).abs() <= S::lit(NEAR)
     }
 
-    /// `(G_c(x), H_c(x), x^n)`.
-    fn sums(&self, c: S, x: S) -> (S, S, S) {
+    /// `(G_c(x), H_c(x))` for `x^n = xn`, summed until a term moves `G_c`
+    /// (a distance) by less than a tenth of z's tolerance or by less than
+    /// the arithmetic's resolution. The ratio `|c| x^n` is at most `EDGE`, so
+    /// what is left after that term is below a quarter of it.
+    fn sums(&self, c: S, x: S, xn: S) -> (S, S) {
         if x == S::ZERO {
-            return (S::ZERO, S::ZERO, S::ZERO);
+            return (S::ZERO, S::ZERO);
         }
         let n = self.base.n;
-        let xn = x.powf(n);
         let q = c * xn;
+        let cut = S::lit(0.1) * self.atol;
         let (mut g, mut h, mut qm, mut nm) = (S::ONE, S::ONE / S::from_i32(2), S::ONE, S::ZERO);
         for _ in 0..MAX_TERMS {
             qm *= q;
@@ -118,57 +121,62 @@ impl<'a, S: Scalar> Branch<'a, S> {
             let (dg, dh) = (qm / (nm + S::ONE), qm / (nm + S::from_i32(2)));
             g += dg;
             h += dh;
-            if dg.abs() <= S::EPSILON * g {
+            if dg.abs() <= S::EPSILON * g || dg.abs() * x <= cut {
                 break;
             }
         }
-        (x * g, x * x * h, xn)
+        (x * g, x * x * h)
     }
 
-    /// The x in `[0, hi]` with `G_c(x) = target`, its `H_c` and `x^n`.
+    /// The x in `[0, hi]` with `G_c(x) = target`, its `H_c` and `x^n`
+    /// (Newton's method, stopped when a correction is below a thousandth of
+    /// z's tolerance or at the arithmetic's resolution: the iterate it would
+    /// correct is returned with the sums already evaluated there).
     fn solve(&self, c: S, target: S, hi: S) -> Result<(S, S, S), StepError> {
+        let n = self.base.n;
+        let stop = S::lit(1e-3) * self.atol;
         let mut x = target.min(hi);
         for _ in 0..MAX_NEWTON {
-            let (g, h, xn) = self.sums(c, x);
+            let xn = x.powf(n);
+            let (g, h) = self.sums(c, x, xn);
             // G' = 1 / (1 - c x^n).
             let next = (x - (g - target) * (S::ONE - c * xn)).max(S::ZERO).min(hi);
-            if (next - x).abs() <= S::from_i32(4) * (S::EPSILON * next + S::MIN_POSITIVE) {
-                let (_, h, xn) = if next == x {
-                    (g, h, xn)
-                } else {
-                    self.sums(c, next)
-                };
-                return Ok((next, h, xn));
+            let dx = (next - x).abs();
+            if dx <= stop || dx <= S::from_i32(4) * (S::EPSILON * next + S::MIN_POSITIVE) {
+                return Ok((x, h, xn));
             }
             x = next;
         }
         Err(StepError::ToleranceNotMet)
     }
 
-    /// The x at which `|c| x^n = EDGE` (no limit when c = 0).
-    fn edge(&self, c: S) -> S {
+    /// The x at which `|c| x^n = EDGE` (no limit when c = 0), and that
+    /// `x^n`.
+    fn edge(&self, c: S) -> (S, S) {
         if c == S::ZERO {
-            S::MAX
+            (S::MAX, S::MAX)
         } else {
-            let edge = (S::lit(EDGE) / c.abs()).powf(S::ONE / self.base.n);
+            let xn = S::lit(EDGE) / c.abs();
+            let edge = xn.powf(S::ONE / self.base.n);
             if edge.is_finite() {
-                edge
+                (edge, xn)
             } else {
-                S::MAX
+                (S::MAX, S::MAX)
             }
         }
     }
 
-    /// A sub-step by the sums in x from `z` (in their region) over at most
-    /// `len`: the new z, the distance covered, `∫ z ds` and dz/du at the end.
-    fn near_zero(&self, z: S, len: S) -> Result<(S, S, S, S), StepError> {
+    /// A sub-step by the sums in x from `z` (in their region, `x0n` =
+    /// `|z|^n`) over at most `len`: the new z, the distance covered,
+    /// `∫ z ds` and dz/du at the end.
+    fn near_zero(&self, z: S, x0n: S, len: S) -> Result<(S, S, S, S), StepError> {
         let x0 = z.abs();
         let mut sigma = if z == S::ZERO { self.d } else { z.signum0() };
-        let (mut used, mut area, mut x_start) = (S::ZERO, S::ZERO, x0);
+        let (mut used, mut area, mut start) = (S::ZERO, S::ZERO, (x0, x0n));
         if z != S::ZERO && self.d * sigma < S::ZERO {
             // Towards zero: G_c(x0) to reach it.
             let c = self.c(sigma);
-            let (to_zero, h0, _) = self.sums(c, x0);
+            let (to_zero, h0) = self.sums(c, x0, x0n);
             if len <= to_zero {
                 let (x, h, xn) = self.solve(c, to_zero - len, x0)?;
                 return Ok((sigma * x, len, sigma * (h0 - h), S::ONE - c * xn));
@@ -176,13 +184,13 @@ impl<'a, S: Scalar> Branch<'a, S> {
             used = to_zero;
             area = sigma * h0;
             sigma = -sigma;
-            x_start = S::ZERO;
+            start = (S::ZERO, S::ZERO);
         }
         // Away from zero (from x0, or from 0 after crossing it), up to the
         // edge of the region.
         let c = self.c(sigma);
-        let (g_start, h_start, _) = self.sums(c, x_start);
-        let edge = self.edge(c);
+        let (g_start, h_start) = self.sums(c, start.0, start.1);
+        let (edge, edge_n) = self.edge(c);
         let (x, h, xn) = self.solve(c, g_start + (len - used), edge)?;
         if x < edge {
             return Ok((
@@ -192,19 +200,19 @@ impl<'a, S: Scalar> Branch<'a, S> {
                 S::ONE - c * xn,
             ));
         }
-        let (g_edge, h_edge, xn_edge) = self.sums(c, edge);
+        let (g_edge, h_edge) = self.sums(c, edge, edge_n);
         Ok((
             sigma * edge,
             used + (g_edge - g_start),
             area + sigma * (h_edge - h_start),
-            S::ONE - c * xn_edge,
+            S::ONE - c * edge_n,
         ))
     }
 
-    /// A Taylor sub-step from `z != 0` over at most `len`, or `None` when
-    /// z is in the region of the sums in x.
+    /// A Taylor sub-step from `z != 0` over at most `len`, or
+    /// `Err(|z|^n)` when z is in the region of the sums in x.
     #[allow(clippy::type_complexity)]
-    fn taylor(&self, z: S, len: S) -> Result<Option<(S, S, S, S)>, StepError> {
+    fn taylor(&self, z: S, len: S) -> Result<Result<(S, S, S, S), S>, StepError> {
         let sigma = z.signum0();
         let x0 = z.abs();
         let c = self.c(sigma);
@@ -213,7 +221,7 @@ impl<'a, S: Scalar> Branch<'a, S> {
         let mut x = [S::ZERO; LEN];
         p[0] = x0.powf(n);
         if self.near(c, p[0]) {
-            return Ok(None);
+            return Ok(Err(p[0]));
         }
         let ds = self.d * sigma;
         x[0] = x0;
@@ -224,13 +232,16 @@ impl<'a, S: Scalar> Branch<'a, S> {
         let mut prev = x[1].abs() * s;
         let mut s_k = s;
         let (n1, minus_dsc) = (n + S::ONE, -(ds * c));
+        // The weight of x_1 p_(k-1), n - (k - 1), falls by one an order.
+        let mut w1 = n;
         for k in 1..MAX_ORDER {
-            let kf = S::from_i32(k as i32);
-            let mut acc = S::ZERO;
+            let (mut acc, mut w) = (S::ZERO, w1);
             for j in 1..=k {
-                // n j - (k - j)
-                acc += (n1 * S::from_i32(j as i32) - kf) * x[j & MASK] * p[(k - j) & MASK];
+                // n j - (k - j), rising by n + 1 with j.
+                acc += w * x[j & MASK] * p[(k - j) & MASK];
+                w += n1;
             }
+            w1 -= S::ONE;
             let pk = acc * (inv_x0 * S::recip_int(k));
             let xk1 = pk * (minus_dsc * S::recip_int(k + 1));
             p[k & MASK] = pk;
@@ -256,7 +267,7 @@ impl<'a, S: Scalar> Branch<'a, S> {
         for _ in 0..64 {
             let (v, dv, iv) = Self::sum(&x, top, s);
             if v > S::ZERO && v.is_finite() {
-                return Ok(Some((sigma * v, s, sigma * iv, ds * dv)));
+                return Ok(Ok((sigma * v, s, sigma * iv, ds * dv)));
             }
             s = s / S::from_i32(2);
         }
@@ -306,13 +317,13 @@ pub(crate) fn advance<S: Scalar>(
     let (mut z, mut area, mut left) = (z0, S::ZERO, len);
     for _ in 0..ctl.max_substeps {
         let step = if z == S::ZERO {
-            None
+            Err(S::ZERO)
         } else {
             b.taylor(z, left)?
         };
         let (z1, used, a, dz) = match step {
-            Some(s) => s,
-            None => b.near_zero(z, left)?,
+            Ok(s) => s,
+            Err(zn) => b.near_zero(z, zn, left)?,
         };
         z = z1;
         area += a;
