@@ -17,15 +17,16 @@
 //! * [`Method::Dp54`]: Dormand-Prince 5(4), 6 derivative evaluations a sub-step;
 //!   the host's integrator wherever an effect is on.
 //! * [`Method::Bs32`]: Bogacki-Shampine 3(2), 3 evaluations a sub-step; the
-//!   integrator of `f32` and fixed point wherever an effect is on, where the
-//!   tolerance is looser.
+//!   integrator of `f32` wherever an effect is on and the default of fixed
+//!   point, where the tolerance is looser.
 //! * [`Method::Series`]: for the displacement-driven element with plain
 //!   Bouc-Wen (no effect on), the increment summed as series in the
 //!   displacement ([`series`](super::series)): one `pow` a sub-step instead of
 //!   one a stage, about one sub-step an increment. Wherever an effect is on,
 //!   and in the oscillator [`Sdof`](super::Sdof), it integrates by the
 //!   arithmetic's pair ([`Control::pair_for`]: `Dp54` in `f64`, `Bs32` in
-//!   `f32` and fixed point). The default in every arithmetic.
+//!   `f32` and fixed point). The default in `f64` and `f32`; opt-in in
+//!   fixed point, where its coefficients can saturate.
 //! * [`Method::BackwardEuler`]: one implicit Euler step per increment, solved
 //!   by Newton's method: the scheme of OpenSees' `BoucWen` and `BWBN`
 //!   materials, kept to reproduce their results. Not error-controlled.
@@ -83,30 +84,31 @@ pub struct Control<S> {
 }
 
 impl<S: Scalar> Control<S> {
-    /// The default for the arithmetic `S`: [`Method::Series`], which sums
-    /// plain Bouc-Wen and integrates by the arithmetic's Runge-Kutta pair
-    /// ([`Control::pair_for`]) wherever an effect is on, at the same
-    /// tolerance:
+    /// The default for the arithmetic `S`:
     ///
-    /// * `f64`: at 1e-9, at most 1000 sub-steps (`Dp54` with effects; force
-    ///   error below 1e-6 of peak against a converged solution on the
-    ///   reference histories, `tests/bwbn_opensees.rs`; plain Bouc-Wen summed
-    ///   as series is within 4.6e-11 of peak there, `tests/bwbn_series.rs`, in
-    ///   less than half of `Dp54`'s time);
-    /// * `f32`: at 1e-5, at most 64 sub-steps (`Bs32` with effects; error
-    ///   below 1e-4 of peak against `f64`, proven on the Cortex-M4F by the
-    ///   shared test cases; plain Bouc-Wen in 22% fewer instructions a step
-    ///   than `Bs32`, worst step 3.4x lower);
-    /// * fixed point: at 2e-4, at most 64 sub-steps (`Bs32` with effects;
-    ///   below 1e-3 of peak; tighter tolerances meet the Q15.16 rounding
-    ///   floor).
+    /// * `f64`: [`Method::Series`] at 1e-9, at most 1000 sub-steps, which
+    ///   sums plain Bouc-Wen and integrates by the arithmetic's pair
+    ///   ([`Control::pair_for`], `Dp54`) at the same tolerance wherever an
+    ///   effect is on (force error below 1e-6 of peak against a converged
+    ///   solution on the reference histories, `tests/bwbn_opensees.rs`; plain
+    ///   Bouc-Wen summed as series is within 4.6e-11 of peak there,
+    ///   `tests/bwbn_series.rs`, in less than half of `Dp54`'s time);
+    /// * `f32`: `Series` at 1e-5, at most 64 sub-steps (`Bs32` with effects;
+    ///   error below 1e-4 of peak against `f64`, proven on the Cortex-M4F by
+    ///   the shared test cases; plain Bouc-Wen in a quarter fewer
+    ///   instructions a step than `Bs32`, worst step 4x lower);
+    /// * fixed point: `Bs32` at 2e-4, at most 64 sub-steps (below 1e-3 of
+    ///   peak; tighter tolerances meet the Q15.16 rounding floor). Not
+    ///   `Series`: near the edge of its sums in z the Taylor coefficients
+    ///   grow like `|z|^-k` and saturate Q15.16's range, so that it refuses
+    ///   ordinary increments there (`ToleranceNotMet`; found by review, 702
+    ///   of 4,800 single increments from loaded states, `Bs32` none).
     pub fn default_for() -> Self {
-        let (tol, max_substeps) = match S::NAME {
-            "f64" => (S::lit(1e-9), 1000),
-            "f32" => (S::lit(1e-5), 64),
-            _ => (S::lit(2e-4), 64),
+        let (method, tol, max_substeps) = match S::NAME {
+            "f64" => (Method::Series, S::lit(1e-9), 1000),
+            "f32" => (Method::Series, S::lit(1e-5), 64),
+            _ => (Method::Bs32, S::lit(2e-4), 64),
         };
-        let method = Method::Series;
         Control {
             method,
             tol,

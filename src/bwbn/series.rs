@@ -103,47 +103,73 @@ impl<'a, S: Scalar> Branch<'a, S> {
         (c * xn).abs() <= S::lit(NEAR)
     }
 
-    /// `(G_c(x), H_c(x))` for `x^n = xn`, summed until a term moves `G_c`
-    /// (a distance) by less than a tenth of z's tolerance or by less than
-    /// the arithmetic's resolution. The ratio `|c| x^n` is at most `EDGE`, so
-    /// what is left after that term is below a quarter of it.
-    fn sums(&self, c: S, x: S, xn: S) -> (S, S) {
+    /// How many terms of the sums reach the tolerance wherever x is at most
+    /// `x_hi` (with `q_hi = |c| x_hi^n`): the first term at `x_hi` that moves
+    /// `G_c` (a distance) by less than a tenth of z's tolerance, or by less
+    /// than the arithmetic's resolution. The ratio is at most `EDGE`, so what
+    /// is left after it is below a quarter of it. One count serves every sum
+    /// of a sub-step, so that `G_c` is one smooth function of x for Newton's
+    /// method (a count chosen at each x made `G_c` jump by about a term, more
+    /// than Newton's stopping rule, which then cycled between two iterates).
+    fn terms(&self, q_hi: S, x_hi: S) -> usize {
+        let n = self.base.n;
+        let cut = S::lit(0.1) * self.atol;
+        let (mut qm, mut nm) = (S::ONE, S::ZERO);
+        for m in 1..MAX_TERMS {
+            qm *= q_hi.abs();
+            nm += n;
+            let dg = qm / (nm + S::ONE) * x_hi;
+            if dg <= cut || dg <= S::EPSILON * x_hi {
+                return m;
+            }
+        }
+        MAX_TERMS
+    }
+
+    /// `(G_c(x), H_c(x))` for `x^n = xn`, summed to `terms` terms.
+    fn sums(&self, c: S, x: S, xn: S, terms: usize) -> (S, S) {
         if x == S::ZERO {
             return (S::ZERO, S::ZERO);
         }
         let n = self.base.n;
         let q = c * xn;
-        let cut = S::lit(0.1) * self.atol;
         let (mut g, mut h, mut qm, mut nm) = (S::ONE, S::ONE / S::from_i32(2), S::ONE, S::ZERO);
-        for _ in 0..MAX_TERMS {
+        for _ in 0..terms {
             qm *= q;
             nm += n;
-            let (dg, dh) = (qm / (nm + S::ONE), qm / (nm + S::from_i32(2)));
-            g += dg;
-            h += dh;
-            if dg.abs() <= S::EPSILON * g || dg.abs() * x <= cut {
-                break;
-            }
+            g += qm / (nm + S::ONE);
+            h += qm / (nm + S::from_i32(2));
         }
         (x * g, x * x * h)
     }
 
-    /// The x in `[0, hi]` with `G_c(x) = target`, its `H_c` and `x^n`
-    /// (Newton's method, stopped when a correction is below a thousandth of
-    /// z's tolerance or at the arithmetic's resolution: the iterate it would
-    /// correct is returned with the sums already evaluated there).
-    fn solve(&self, c: S, target: S, hi: S) -> Result<(S, S, S), StepError> {
+    /// The x in `[0, hi]` with `G_c(x) = target`, its `H_c` and `x^n`, by
+    /// Newton's method. It stops when a correction is below a thousandth of
+    /// z's tolerance or at the arithmetic's resolution, and returns the
+    /// corrected x with `H_c` and `x^n` carried to it to first order from
+    /// the iterate's (`H' = x G'`, `(x^n)' = n x^n / x`), so that no further
+    /// power is taken; a correction clamped at `hi` returns `hi` itself, which
+    /// the caller recognises as the edge.
+    fn solve(&self, c: S, target: S, hi: S, terms: usize) -> Result<(S, S, S), StepError> {
         let n = self.base.n;
         let stop = S::lit(1e-3) * self.atol;
         let mut x = target.min(hi);
         for _ in 0..MAX_NEWTON {
             let xn = x.powf(n);
-            let (g, h) = self.sums(c, x, xn);
+            let (g, h) = self.sums(c, x, xn, terms);
             // G' = 1 / (1 - c x^n).
-            let next = (x - (g - target) * (S::ONE - c * xn)).max(S::ZERO).min(hi);
-            let dx = (next - x).abs();
-            if dx <= stop || dx <= S::from_i32(4) * (S::EPSILON * next + S::MIN_POSITIVE) {
-                return Ok((x, h, xn));
+            let slope = S::ONE - c * xn;
+            let next = (x - (g - target) * slope).max(S::ZERO).min(hi);
+            let dx = next - x;
+            if dx.abs() <= stop
+                || dx.abs() <= S::from_i32(4) * (S::EPSILON * next + S::MIN_POSITIVE)
+            {
+                if x == S::ZERO {
+                    let xn = next.powf(n);
+                    let (_, h) = self.sums(c, next, xn, terms);
+                    return Ok((next, h, xn));
+                }
+                return Ok((next, h + dx * x / slope, xn + n * xn * dx / x));
             }
             x = next;
         }
@@ -176,9 +202,10 @@ impl<'a, S: Scalar> Branch<'a, S> {
         if z != S::ZERO && self.d * sigma < S::ZERO {
             // Towards zero: G_c(x0) to reach it.
             let c = self.c(sigma);
-            let (to_zero, h0) = self.sums(c, x0, x0n);
+            let terms = self.terms(c * x0n, x0);
+            let (to_zero, h0) = self.sums(c, x0, x0n, terms);
             if len <= to_zero {
-                let (x, h, xn) = self.solve(c, to_zero - len, x0)?;
+                let (x, h, xn) = self.solve(c, to_zero - len, x0, terms)?;
                 return Ok((sigma * x, len, sigma * (h0 - h), S::ONE - c * xn));
             }
             used = to_zero;
@@ -189,9 +216,10 @@ impl<'a, S: Scalar> Branch<'a, S> {
         // Away from zero (from x0, or from 0 after crossing it), up to the
         // edge of the region.
         let c = self.c(sigma);
-        let (g_start, h_start) = self.sums(c, start.0, start.1);
         let (edge, edge_n) = self.edge(c);
-        let (x, h, xn) = self.solve(c, g_start + (len - used), edge)?;
+        let terms = self.terms(c * edge_n, edge);
+        let (g_start, h_start) = self.sums(c, start.0, start.1, terms);
+        let (x, h, xn) = self.solve(c, g_start + (len - used), edge, terms)?;
         if x < edge {
             return Ok((
                 sigma * x,
@@ -200,7 +228,7 @@ impl<'a, S: Scalar> Branch<'a, S> {
                 S::ONE - c * xn,
             ));
         }
-        let (g_edge, h_edge) = self.sums(c, edge, edge_n);
+        let (g_edge, h_edge) = self.sums(c, edge, edge_n, terms);
         Ok((
             sigma * edge,
             used + (g_edge - g_start),
@@ -236,7 +264,8 @@ impl<'a, S: Scalar> Branch<'a, S> {
         let mut w1 = n;
         for k in 1..MAX_ORDER {
             let (mut acc, mut w) = (S::ZERO, w1);
-            for j in 1..=k {
+            // (An exclusive range: `1..=k` kept an extra exit test in the loop.)
+            for j in 1..k + 1 {
                 // n j - (k - j), rising by n + 1 with j.
                 acc += w * x[j & MASK] * p[(k - j) & MASK];
                 w += n1;
@@ -279,15 +308,14 @@ impl<'a, S: Scalar> Branch<'a, S> {
         let xt = x[top & MASK];
         let (mut v, mut dv) = (xt, S::from_i32(top as i32) * xt);
         let mut iv = xt * S::recip_int(top + 1);
-        for k in (0..top).rev() {
+        for k in (1..top).rev() {
             let xk = x[k & MASK];
             v = v * s + xk;
-            if k >= 1 {
-                dv = dv * s + S::from_i32(k as i32) * xk;
-            }
+            dv = dv * s + S::from_i32(k as i32) * xk;
             iv = iv * s + xk * S::recip_int(k + 1);
         }
-        (v, dv, iv * s)
+        let x0 = x[0];
+        (v * s + x0, dv, (iv * s + x0) * s)
     }
 
     /// Whether the last two terms of a full-order series are within the

@@ -17,7 +17,10 @@ use crate::selftest::Case;
 pub const CASES: &[Case] = &[
     ("bwbn::history_has_the_reference_shape", history::shape),
     ("bwbn::reference_history::plain", accuracy::plain),
-    ("bwbn::reference_history::plain_bs32", accuracy::plain_bs32),
+    (
+        "bwbn::reference_history::plain_other_methods",
+        accuracy::plain_other_methods,
+    ),
     ("bwbn::reference_history::degrading", accuracy::degrading),
     ("bwbn::reference_history::pinching", accuracy::pinching),
     ("bwbn::reference_history::all_four", accuracy::all_four),
