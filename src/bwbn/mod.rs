@@ -207,11 +207,15 @@ impl<S: Scalar, X: Effect<S>> Bwbn<S, X> {
     }
 
     /// Plain Bouc-Wen from the committed state to displacement `u` by
-    /// [`series`]. Kept out of line: inlined, it changed how the compiler laid
-    /// out the Runge-Kutta path of the same function, whose Q15.16 steps then
-    /// took 15% more instructions on the Cortex-M4F than before `Series`
-    /// existed; out of line, 7% (`docs/benchmarks.md`).
-    #[inline(never)]
+    /// [`series`]. Kept out of line on bare-metal targets: inlined, it
+    /// changed how the compiler laid out the Runge-Kutta path of the same
+    /// function, whose Q15.16 steps then took 15% more instructions on the
+    /// Cortex-M4F than before `Series` existed (out of line, 7%), and plain
+    /// `f32` steps by `Series` itself 21% more (911 against 753). Inlined
+    /// elsewhere: on the host the state then stays out of memory, 4% faster
+    /// a step (`docs/benchmarks.md`).
+    #[cfg_attr(target_os = "none", inline(never))]
+    #[cfg_attr(not(target_os = "none"), inline)]
     fn advance_series(&self, u: S, dir: S, len: S) -> Result<State<S>, StepError> {
         let c = &self.committed;
         let base = self.params.base();

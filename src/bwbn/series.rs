@@ -68,6 +68,9 @@ const EDGE: f32 = 0.2;
 /// Most terms of the sums in x and Newton iterations (Newton converges
 /// quadratically from `G(x) ~ x`).
 const MAX_TERMS: usize = 24;
+/// The weights of the sums' terms, masked like the coefficients (`LEN`).
+const TERMS_LEN: usize = 32;
+const TERMS_MASK: usize = TERMS_LEN - 1;
 const MAX_NEWTON: usize = 16;
 
 /// The end of an increment.
@@ -81,6 +84,14 @@ pub(crate) struct End<S> {
     pub dz_du: S,
     /// d(energy)/du at the end, `k_hys z`.
     pub de_du: S,
+}
+
+/// The terms of the sums in x for one sub-step: how many, and the weights
+/// `1 / (n m + 1)` of `G_c` and `1 / (n m + 2)` of `H_c` for term m.
+struct Terms<S> {
+    count: usize,
+    g: [S; TERMS_LEN],
+    h: [S; TERMS_LEN],
 }
 
 /// Plain Bouc-Wen on one increment.
@@ -104,41 +115,50 @@ impl<'a, S: Scalar> Branch<'a, S> {
     }
 
     /// How many terms of the sums reach the tolerance wherever x is at most
-    /// `x_hi` (with `q_hi = |c| x_hi^n`): the first term at `x_hi` that moves
-    /// `G_c` (a distance) by less than a tenth of z's tolerance, or by less
-    /// than the arithmetic's resolution. The ratio is at most `EDGE`, so what
-    /// is left after it is below a quarter of it. One count serves every sum
-    /// of a sub-step, so that `G_c` is one smooth function of x for Newton's
-    /// method (a count chosen at each x made `G_c` jump by about a term, more
-    /// than Newton's stopping rule, which then cycled between two iterates).
-    fn terms(&self, q_hi: S, x_hi: S) -> usize {
+    /// `x_hi` (with `q_hi = |c| x_hi^n`), and their weights: the first term
+    /// at `x_hi` that moves `G_c` (a distance) by less than a tenth of z's
+    /// tolerance, or by less than the arithmetic's resolution. The ratio is
+    /// at most `EDGE`, so what is left after it is below a quarter of it. One
+    /// count serves every sum of a sub-step, so that `G_c` is one smooth
+    /// function of x for Newton's method (a count chosen at each x made
+    /// `G_c` jump by about a term, more than Newton's stopping rule, which
+    /// then cycled between two iterates), and the weights' divisions are
+    /// done once, not at every iteration.
+    fn terms(&self, q_hi: S, x_hi: S) -> Terms<S> {
         let n = self.base.n;
         let cut = S::lit(0.1) * self.atol;
-        let (mut qm, mut nm) = (S::ONE, S::ZERO);
-        for m in 1..MAX_TERMS {
-            qm *= q_hi.abs();
+        let mut t = Terms {
+            count: MAX_TERMS,
+            g: [S::ZERO; TERMS_LEN],
+            h: [S::ZERO; TERMS_LEN],
+        };
+        let (mut term, mut nm) = (x_hi, S::ZERO);
+        for m in 1..MAX_TERMS + 1 {
             nm += n;
-            let dg = qm / (nm + S::ONE) * x_hi;
+            let rg = S::ONE / (nm + S::ONE);
+            t.g[m & TERMS_MASK] = rg;
+            t.h[m & TERMS_MASK] = S::ONE / (nm + S::from_i32(2));
+            term *= q_hi.abs();
+            let dg = term * rg;
             if dg <= cut || dg <= S::EPSILON * x_hi {
-                return m;
+                t.count = m;
+                break;
             }
         }
-        MAX_TERMS
+        t
     }
 
-    /// `(G_c(x), H_c(x))` for `x^n = xn`, summed to `terms` terms.
-    fn sums(&self, c: S, x: S, xn: S, terms: usize) -> (S, S) {
+    /// `(G_c(x), H_c(x))` for `x^n = xn`, summed to `t.count` terms.
+    fn sums(&self, c: S, x: S, xn: S, t: &Terms<S>) -> (S, S) {
         if x == S::ZERO {
             return (S::ZERO, S::ZERO);
         }
-        let n = self.base.n;
         let q = c * xn;
-        let (mut g, mut h, mut qm, mut nm) = (S::ONE, S::ONE / S::from_i32(2), S::ONE, S::ZERO);
-        for _ in 0..terms {
+        let (mut g, mut h, mut qm) = (S::ONE, S::ONE / S::from_i32(2), S::ONE);
+        for m in 1..t.count + 1 {
             qm *= q;
-            nm += n;
-            g += qm / (nm + S::ONE);
-            h += qm / (nm + S::from_i32(2));
+            g += qm * t.g[m & TERMS_MASK];
+            h += qm * t.h[m & TERMS_MASK];
         }
         (x * g, x * x * h)
     }
@@ -150,7 +170,7 @@ impl<'a, S: Scalar> Branch<'a, S> {
     /// the iterate's (`H' = x G'`, `(x^n)' = n x^n / x`), so that no further
     /// power is taken; a correction clamped at `hi` returns `hi` itself, which
     /// the caller recognises as the edge.
-    fn solve(&self, c: S, target: S, hi: S, terms: usize) -> Result<(S, S, S), StepError> {
+    fn solve(&self, c: S, target: S, hi: S, terms: &Terms<S>) -> Result<(S, S, S), StepError> {
         let n = self.base.n;
         let stop = S::lit(1e-3) * self.atol;
         let mut x = target.min(hi);
@@ -203,9 +223,9 @@ impl<'a, S: Scalar> Branch<'a, S> {
             // Towards zero: G_c(x0) to reach it.
             let c = self.c(sigma);
             let terms = self.terms(c * x0n, x0);
-            let (to_zero, h0) = self.sums(c, x0, x0n, terms);
+            let (to_zero, h0) = self.sums(c, x0, x0n, &terms);
             if len <= to_zero {
-                let (x, h, xn) = self.solve(c, to_zero - len, x0, terms)?;
+                let (x, h, xn) = self.solve(c, to_zero - len, x0, &terms)?;
                 return Ok((sigma * x, len, sigma * (h0 - h), S::ONE - c * xn));
             }
             used = to_zero;
@@ -218,8 +238,8 @@ impl<'a, S: Scalar> Branch<'a, S> {
         let c = self.c(sigma);
         let (edge, edge_n) = self.edge(c);
         let terms = self.terms(c * edge_n, edge);
-        let (g_start, h_start) = self.sums(c, start.0, start.1, terms);
-        let (x, h, xn) = self.solve(c, g_start + (len - used), edge, terms)?;
+        let (g_start, h_start) = self.sums(c, start.0, start.1, &terms);
+        let (x, h, xn) = self.solve(c, g_start + (len - used), edge, &terms)?;
         if x < edge {
             return Ok((
                 sigma * x,
@@ -228,7 +248,7 @@ impl<'a, S: Scalar> Branch<'a, S> {
                 S::ONE - c * xn,
             ));
         }
-        let (g_edge, h_edge) = self.sums(c, edge, edge_n, terms);
+        let (g_edge, h_edge) = self.sums(c, edge, edge_n, &terms);
         Ok((
             sigma * edge,
             used + (g_edge - g_start),
