@@ -117,11 +117,13 @@ impl<S: Scalar> Control<S> {
     }
 
     /// The Runge-Kutta pair that integrates where [`Method::Series`] does not
-    /// apply (an effect on, the oscillator): `Dp54` in `f64`, `Bs32` in `f32`
-    /// and fixed point, whose looser tolerances a third-order pair meets in
-    /// fewer evaluations.
+    /// apply (an effect on, the oscillator), chosen by the arithmetic's
+    /// resolution: `Dp54` where it is finer than 1e-10 (`f64`, and the
+    /// host's dual numbers over `f64`, whose Jacobians must follow the same
+    /// sub-steps as the `f64` residuals), `Bs32` in `f32` and fixed point,
+    /// whose looser tolerances a third-order pair meets in fewer evaluations.
     pub fn pair_for() -> Method {
-        if S::NAME == "f64" {
+        if S::EPSILON < S::lit(1e-10) {
             Method::Dp54
         } else {
             Method::Bs32
