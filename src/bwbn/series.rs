@@ -259,6 +259,14 @@ impl<'a, S: Scalar> Branch<'a, S> {
 
     /// A Taylor sub-step from `z != 0` over at most `len`, or
     /// `Err(|z|^n)` when z is in the region of the sums in x.
+    ///
+    /// The coefficients are kept relative to `x0` and the length in units of
+    /// `x0`: `X_k = x_k x0^(k-1)`, `P_k = p_k x0^k / p0`, `r = s / x0`, which
+    /// turns the recurrence into `k P_k = sum (n j - (k - j)) X_j P_(k-j)`,
+    /// `X_(k+1) = -d sigma c p0 P_k / (k + 1)` (no division by x0). Unscaled,
+    /// `x_k` grows like `x0^-k` near the region of the sums, which
+    /// overflowed `f32` at order 12 once x0 was below about 1e-3 (lengths in
+    /// metres) and saturated Q15.16 (found by review).
     #[allow(clippy::type_complexity)]
     fn taylor(&self, z: S, len: S) -> Result<Result<(S, S, S, S), S>, StepError> {
         let sigma = z.signum0();
@@ -267,20 +275,22 @@ impl<'a, S: Scalar> Branch<'a, S> {
         let n = self.base.n;
         let mut p = [S::ZERO; LEN];
         let mut x = [S::ZERO; LEN];
-        p[0] = x0.powf(n);
-        if self.near(c, p[0]) {
-            return Ok(Err(p[0]));
+        let p0 = x0.powf(n);
+        if self.near(c, p0) {
+            return Ok(Err(p0));
         }
         let ds = self.d * sigma;
-        x[0] = x0;
-        x[1] = ds * (S::ONE - c * p[0]);
-        let inv_x0 = S::ONE / x0;
-        let mut s = len;
+        p[0] = S::ONE;
+        x[0] = S::ONE;
+        x[1] = ds * (S::ONE - c * p0);
+        // The tolerance in units of x0.
+        let atol = self.atol / x0;
+        let (mut s, mut r) = (len, len / x0);
         let mut top = MAX_ORDER;
-        let mut prev = x[1].abs() * s;
-        let mut s_k = s;
-        let (n1, minus_dsc) = (n + S::ONE, -(ds * c));
-        // The weight of x_1 p_(k-1), n - (k - 1), falls by one an order.
+        let mut prev = x[1].abs() * r;
+        let mut r_k = r;
+        let (n1, minus_dscp) = (n + S::ONE, -(ds * c * p0));
+        // The weight of X_1 P_(k-1), n - (k - 1), falls by one an order.
         let mut w1 = n;
         for k in 1..MAX_ORDER {
             let (mut acc, mut w) = (S::ZERO, w1);
@@ -291,61 +301,64 @@ impl<'a, S: Scalar> Branch<'a, S> {
                 w += n1;
             }
             w1 -= S::ONE;
-            let pk = acc * (inv_x0 * S::recip_int(k));
-            let xk1 = pk * (minus_dsc * S::recip_int(k + 1));
+            let pk = acc * S::recip_int(k);
+            let xk1 = pk * (minus_dscp * S::recip_int(k + 1));
             p[k & MASK] = pk;
             x[(k + 1) & MASK] = xk1;
-            s_k *= s;
-            let t = xk1.abs() * s_k;
-            if k >= 2 && t + prev <= self.atol {
+            r_k *= r;
+            let t = xk1.abs() * r_k;
+            if k >= 2 && t + prev <= atol {
                 top = k + 1;
                 break;
             }
             prev = t;
         }
         let mut halvings = 0;
-        while top == MAX_ORDER && !self.small(&x, s) {
+        while top == MAX_ORDER && !Self::small(&x, r, atol) {
             s = s / S::from_i32(2);
+            r = r / S::from_i32(2);
             halvings += 1;
-            if halvings > 64 || !(s > S::ZERO) {
+            if halvings > 64 || !(r > S::ZERO) {
                 return Err(StepError::ToleranceNotMet);
             }
         }
         // A sum that overshoots z = 0 (possible only at the edge of the
         // series' radius) is summed again over half the length.
         for _ in 0..64 {
-            let (v, dv, iv) = Self::sum(&x, top, s);
-            if v > S::ZERO && v.is_finite() {
+            let (v, dv, iv) = Self::sum(&x, top, r);
+            let (v, iv) = (x0 * v, x0 * x0 * iv);
+            if v > S::ZERO && v.is_finite() && iv.is_finite() {
                 return Ok(Ok((sigma * v, s, sigma * iv, ds * dv)));
             }
             s = s / S::from_i32(2);
+            r = r / S::from_i32(2);
         }
         Err(StepError::NonFiniteState)
     }
 
-    /// Horner: `x(s)`, `dx/ds` and `∫_0^s x` of the series `x[..=top]`.
-    fn sum(x: &[S; LEN], top: usize, s: S) -> (S, S, S) {
+    /// Horner: `X(r)`, `dX/dr` and `∫_0^r X` of the series `x[..=top]`.
+    fn sum(x: &[S; LEN], top: usize, r: S) -> (S, S, S) {
         let xt = x[top & MASK];
         let (mut v, mut dv) = (xt, S::from_i32(top as i32) * xt);
         let mut iv = xt * S::recip_int(top + 1);
         for k in (1..top).rev() {
             let xk = x[k & MASK];
-            v = v * s + xk;
-            dv = dv * s + S::from_i32(k as i32) * xk;
-            iv = iv * s + xk * S::recip_int(k + 1);
+            v = v * r + xk;
+            dv = dv * r + S::from_i32(k as i32) * xk;
+            iv = iv * r + xk * S::recip_int(k + 1);
         }
         let x0 = x[0];
-        (v * s + x0, dv, (iv * s + x0) * s)
+        (v * r + x0, dv, (iv * r + x0) * r)
     }
 
     /// Whether the last two terms of a full-order series are within the
-    /// tolerance at length `s`.
-    fn small(&self, x: &[S; LEN], s: S) -> bool {
-        let mut s_k = S::ONE;
+    /// tolerance `atol` at length `r` (both in units of x0).
+    fn small(x: &[S; LEN], r: S, atol: S) -> bool {
+        let mut r_k = S::ONE;
         for _ in 0..MAX_ORDER - 1 {
-            s_k *= s;
+            r_k *= r;
         }
-        (x[MAX_ORDER - 1].abs() + x[MAX_ORDER].abs() * s) * s_k <= self.atol
+        (x[MAX_ORDER - 1].abs() + x[MAX_ORDER].abs() * r) * r_k <= atol
     }
 }
 
