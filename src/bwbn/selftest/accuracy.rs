@@ -18,7 +18,7 @@
 //! * `f32`, default control (`Series`, which is `Bs32` with an effect on; tol
 //!   1e-5): 2.1e-6 / 7.1e-6 / 6.2e-6 / 6.4e-6 (plain by `Bs32`: 6.5e-6);
 //! * fixed point, default control (`Bs32`, tol 2e-4): 1.20e-4 / 1.74e-4 /
-//!   3.20e-4 / 2.48e-4 (plain summed as series, opt-in: 2.2e-5), within the
+//!   3.20e-4 / 2.48e-4 (plain summed as series, opt-in: 3.1e-5), within the
 //!   1e-3 the library aims for; tolerances below 2e-4 gain nothing with
 //!   `Bs32` (the Q15.16 rounding floor is about 1.2e-4); at 2e-3 `Bs32` was
 //!   off by 1.26e-3 / 8.4e-4 / 3.19e-3 / 2.22e-3, the integration tolerance
