@@ -299,7 +299,8 @@ fn exact_z_n1(beta: f64, gamma: f64, z0: f64, du: f64) -> f64 {
 /// sums in z and Newton's method do most of the work), against the closed
 /// form for n = 1 from the element's own previous z: the local error is
 /// within z's tolerance `tol * z_scale` (measured at most 0.012 of it in
-/// f64 at 1e-6 and 1e-9 and in f32 at 1e-5), and no increment is refused. Found by review:
+/// f64 at 1e-6 and 1e-9 and in f32 at 1e-5; 0.22 in Q15.16 at 2e-4, where
+/// `Series` is opt-in), and no increment is refused. Found by review:
 /// a term count of the sums that changed with z let Newton's method cycle
 /// between two iterates (`ToleranceNotMet`), and a Newton step clamped at
 /// the edge of the sums' region returned a z short of it with the whole
@@ -358,6 +359,7 @@ fn closed_form_increments_near_zero_n1() {
     check::<f64>(1e-6);
     check::<f64>(1e-9);
     check::<f32>(1e-5);
+    check::<Fixed>(2e-4);
 }
 
 /// The increments the review found refused: Newton's method cycling in the
