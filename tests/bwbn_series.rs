@@ -54,6 +54,15 @@ fn errors(a: &[[f64; 3]], b: &[[f64; 3]], k0: f64) -> [f64; 3] {
     ]
 }
 
+/// The next state of the 64-bit linear congruential generator the random
+/// histories here draw from (Knuth's MMIX constants).
+fn next(state: &mut u64) -> u64 {
+    *state = state
+        .wrapping_mul(6364136223846793005)
+        .wrapping_add(1442695040888963407);
+    *state
+}
+
 /// The parameters of the OpenSees reference cases, plain (Zu = 1).
 fn reference_params() -> BwbnParams<f64> {
     common::reference_params(EffectSet::NONE)
@@ -95,10 +104,7 @@ fn mixed_history() -> Vec<f64> {
     let mut u = 0.0;
     let mut state = 12345u64;
     for i in 0..1500 {
-        state = state
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        let r = (state >> 11) as f64 / (1u64 << 53) as f64;
+        let r = (next(&mut state) >> 11) as f64 / (1u64 << 53) as f64;
         let du = match i % 50 {
             0 => 40.0 * (r - 0.5),
             1..=9 => 1e-6 * (r - 0.5),
@@ -309,12 +315,7 @@ fn exact_z_n1(beta: f64, gamma: f64, z0: f64, du: f64) -> f64 {
 fn closed_form_increments_near_zero_n1() {
     fn check<S: Scalar>(tol: f64) {
         let mut state = 7u64;
-        let mut rnd = || {
-            state = state
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (state >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut rnd = || (next(&mut state) >> 11) as f64 / (1u64 << 53) as f64;
         // (beta, gamma): softening, gamma = 0, beta = gamma, hardening.
         for (beta, gamma) in [(2.0, -1.0), (1.0, 0.0), (0.5, 0.5), (0.5, -1.0)] {
             let p = BwbnParams::plain(
@@ -466,10 +467,7 @@ fn small_length_units_in_f32() {
         let p = BwbnParams::plain(BoucWen::new(1.0f32, 0.1, n, 2.0 * b, -b).unwrap());
         let mut el = Bwbn::new(p);
         for i in 0..20_000 {
-            state = state
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            let r = (state >> 40) as f32 / (1u64 << 24) as f32;
+            let r = (next(&mut state) >> 40) as f32 / (1u64 << 24) as f32;
             let z = el.committed().z;
             let u = el.committed().u + zu * (0.6 * r - 0.3) - 0.5 * z * r;
             el.set_trial(u)

@@ -26,7 +26,7 @@
 //!   and in the oscillator [`Sdof`](super::Sdof), it integrates by the
 //!   arithmetic's pair ([`Control::pair_for`]: `Dp54` in `f64`, `Bs32` in
 //!   `f32` and fixed point). The default in `f64` and `f32`; opt-in in
-//!   fixed point, where its coefficients can saturate.
+//!   fixed point (see [`Control::default_for`]).
 //! * [`Method::BackwardEuler`]: one implicit Euler step per increment, solved
 //!   by Newton's method: the scheme of OpenSees' `BoucWen` and `BWBN`
 //!   materials, kept to reproduce their results. Not error-controlled.
@@ -99,10 +99,11 @@ impl<S: Scalar> Control<S> {
     ///   instructions a step than `Bs32`, worst step 4x lower);
     /// * fixed point: `Bs32` at 2e-4, at most 64 sub-steps (below 1e-3 of
     ///   peak; tighter tolerances meet the Q15.16 rounding floor). Not
-    ///   `Series`: near the edge of its sums in z the Taylor coefficients
-    ///   grow like `|z|^-k` and saturate Q15.16's range, so that it refuses
-    ///   ordinary increments there (`ToleranceNotMet`; found by review, 702
-    ///   of 4,800 single increments from loaded states, `Bs32` none).
+    ///   `Series` yet: before its coefficients were scaled they saturated
+    ///   Q15.16 near z = 0 and it refused ordinary increments (found by
+    ///   review); since, it passes the reference history and the closed-form
+    ///   checks of `tests/bwbn_series.rs`, but has not been checked against
+    ///   `f64` on random parameter sets in fixed point.
     pub fn default_for() -> Self {
         let (method, tol, max_substeps) = match S::NAME {
             "f64" => (Method::Series, S::lit(1e-9), 1000),
