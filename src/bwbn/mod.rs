@@ -160,11 +160,13 @@ impl<S: Scalar, X: Effect<S>> Bwbn<S, X> {
 
     /// `control` as this element integrates: [`Method::Series`] sums plain
     /// Bouc-Wen only, so with any effect on it is the arithmetic's pair
-    /// ([`Control::pair_for`]) at the same tolerance. Decided once here, not
-    /// at every step.
+    /// ([`Control::pair_for`]) at the same tolerance; likewise where the
+    /// arithmetic cannot resolve the region of its sums near z = 0 (a small
+    /// n with a large `|beta| + |gamma|`, see `series::resolves`). Decided
+    /// once here, not at every step.
     fn resolved(params: &BwbnParams<S>, extra: &X, control: Control<S>) -> Control<S> {
         let plain = params.effect_set() == EffectSet::NONE && extra.is_none();
-        if control.method == Method::Series && !plain {
+        if control.method == Method::Series && !(plain && series::resolves(params.base())) {
             Control {
                 method: Control::<S>::pair_for(),
                 ..control
@@ -179,7 +181,8 @@ impl<S: Scalar, X: Effect<S>> Bwbn<S, X> {
         &self.params
     }
     /// The integration control, as the element integrates (`Series` becomes
-    /// [`Control::pair_for`] when an effect is on).
+    /// [`Control::pair_for`] when an effect is on, or where its sums near
+    /// z = 0 are below the arithmetic's resolution).
     pub fn control(&self) -> &Control<S> {
         &self.control
     }
