@@ -631,6 +631,41 @@ fn unresolvable_sums_integrate_by_the_pair() {
     assert_eq!(Bwbn::new(p32).control().method, Method::Bs32);
     let p64 = BwbnParams::plain(BoucWen::new(1.0, 0.1, 0.3, 20.0, -19.0).unwrap());
     assert_eq!(Bwbn::new(p64).control().method, Method::Series);
+    // Sets whose region where z approaches zero is resolved keep summing,
+    // whatever the branch leaving it (a second review: a first criterion that
+    // took |beta| + |gamma| moved them to the pair, which refused the f32
+    // hardening set at n = 0.1 and was 5-50x less accurate in Q15.16).
+    let hardening = BwbnParams::plain(BoucWen::new(1.0f32, 0.1, 0.1, -1.0, -1.0).unwrap());
+    let mut el = Bwbn::new(hardening);
+    assert_eq!(el.control().method, Method::Series);
+    let exact = BwbnParams::plain(BoucWen::new(1.0, 0.1, 0.1, -1.0, -1.0).unwrap());
+    let mut reference = Bwbn::with_extra(exact, (), control(Method::Dp54, 1e-13, 60_000));
+    for u in [0.1f32, 0.3, 1.0] {
+        let z = el.set_trial(u).map(|_| el.trial().z).unwrap();
+        el.commit();
+        reference.set_trial(f64::from(u)).unwrap();
+        reference.commit();
+        let zr = reference.committed().z;
+        assert!(
+            (f64::from(z) - zr).abs() <= 1e-4 * zr.abs(),
+            "u {u}: z {z} against {zr}"
+        );
+    }
+    for (n, beta, gamma) in [(0.3, 1.0, -1.0), (0.15, 0.635, 0.126), (0.25, 1.0, 1.0)] {
+        let q = |v: f64| Fixed::from_f64(v);
+        let p = BwbnParams::plain(BoucWen::new(q(1.0), q(0.1), q(n), q(beta), q(gamma)).unwrap());
+        assert_eq!(
+            Bwbn::new(p).control().method,
+            Method::Series,
+            "n {n} beta {beta} gamma {gamma}"
+        );
+    }
+    // Leaving zero, fixed point needs the sums' region too: the hardening
+    // set at n = 0.1 ends it at 1e-10, and Q15.16 refused zigzags or
+    // returned z = 0 by `Series`.
+    let q = |v: f64| Fixed::from_f64(v);
+    let p = BwbnParams::plain(BoucWen::new(q(1.0), q(0.1), q(0.1), q(-1.0), q(-1.0)).unwrap());
+    assert_eq!(Bwbn::new(p).control().method, Method::Bs32);
     // The reference set keeps summing in every arithmetic.
     assert_eq!(
         Bwbn::new(common::reference_params_in::<f32>(EffectSet::NONE))

@@ -23,8 +23,9 @@
 //!   Bouc-Wen (no effect on), the increment summed as series in the
 //!   displacement ([`series`](super::series)): one `pow` a sub-step instead of
 //!   one a stage, about one sub-step an increment. Wherever an effect is on,
-//!   and in the oscillator [`Sdof`](super::Sdof), it integrates by the
-//!   arithmetic's pair ([`Control::pair_for`]: `Dp54` in `f64`, `Bs32` in
+//!   in the oscillator [`Sdof`](super::Sdof), and where the arithmetic cannot
+//!   resolve its sums near z = 0 (a small n with a large `|gamma - beta|`), it
+//!   integrates by the arithmetic's pair ([`Control::pair_for`]: `Dp54` in `f64`, `Bs32` in
 //!   `f32` and fixed point). The default in every arithmetic (see
 //!   [`Control::default_for`]).
 //! * [`Method::BackwardEuler`]: one implicit Euler step per increment, solved

@@ -162,7 +162,7 @@ impl<S: Scalar, X: Effect<S>> Bwbn<S, X> {
     /// Bouc-Wen only, so with any effect on it is the arithmetic's pair
     /// ([`Control::pair_for`]) at the same tolerance; likewise where the
     /// arithmetic cannot resolve the region of its sums near z = 0 (a small
-    /// n with a large `|beta| + |gamma|`, see `series::resolves`). Decided
+    /// n with a large `|gamma - beta|`, see `series::resolves`). Decided
     /// once here, not at every step.
     fn resolved(params: &BwbnParams<S>, extra: &X, control: Control<S>) -> Control<S> {
         let plain = params.effect_set() == EffectSet::NONE && extra.is_none();
