@@ -340,7 +340,7 @@ impl<S: Scalar, X: Effect<S>> Sdof<S, X> {
             (Some(dy), None) => dy,
             _ => rhs(S::ZERO, &y0)?,
         };
-        let end = integrate::advance(&self.control, &mut rhs, y0, dy0, dt, &self.atol, self.h)?;
+        let end = integrate::advance(&self.control, &mut rhs, y0, dy0, dt, &self.atol, self.h, [])?;
         // The clock too: Q15.16 runs out at 32767 s (9.1 h).
         let t = s.t + dt;
         // Energy that no effect reads is only reported: past what the

@@ -255,8 +255,8 @@ impl<S: Scalar, X: Effect<S>> Bwbn<S, X> {
     /// The increment to displacement `u` by the Runge-Kutta pair of the
     /// control (or OpenSees' scheme). Kept out of line on bare-metal targets
     /// like [`Self::advance_series`]: inlined into `set_trial`, the
-    /// Cortex-M4F took 1,780 instructions a step with all four effects in
-    /// `f32`, out of line 1,646 (Q15.16: 8,487 and 8,097;
+    /// Cortex-M4F took 1,881 instructions a step with all four effects in
+    /// `f32`, out of line 1,723 (Q15.16: 9,033 and 8,514;
     /// `docs/benchmarks.md`).
     #[cfg_attr(target_os = "none", inline(never))]
     #[cfg_attr(not(target_os = "none"), inline)]
@@ -272,12 +272,34 @@ impl<S: Scalar, X: Effect<S>> Bwbn<S, X> {
             Ok([dirv * dz, dirv * k_hys * y[0]])
         };
         let y0 = [c.z, c.energy];
-        let dy0 = if c.dir == dir {
-            [dir * c.dz, dir * c.de]
-        } else {
-            rhs(S::ZERO, &y0)?
+        // z is a kink: `|z|^n` and `sgn(z du)` change form at z = 0. After it,
+        // and after a reversal (where z, nearly still at Zu before, leaves it
+        // at 2 beta / (beta + gamma) times the elastic rate), the first
+        // sub-step moves z by at most REVERSAL_REACH of its scale.
+        let kink = integrate::Kink {
+            index: 0,
+            reach: S::lit(integrate::REVERSAL_REACH) * self.params.z_scale(),
         };
-        let end = integrate::advance(&self.control, &mut rhs, y0, dy0, len, &self.atol, c.h)?;
+        let (dy0, h_try) = if c.dir == dir {
+            ([dir * c.dz, dir * c.de], c.h)
+        } else {
+            let dy0 = rhs(S::ZERO, &y0)?;
+            let floor = integrate::smallest_substep(len) * S::lit(8.0);
+            (
+                dy0,
+                c.h.min(integrate::reach_size(kink.reach, dy0[0], floor)),
+            )
+        };
+        let end = integrate::advance(
+            &self.control,
+            &mut rhs,
+            y0,
+            dy0,
+            len,
+            &self.atol,
+            h_try,
+            [kink],
+        )?;
         let [z, energy] = end.y;
         // Energy that no effect reads is only reported: past what the
         // arithmetic holds it reads as non-finite, and the element goes on.

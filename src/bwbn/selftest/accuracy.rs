@@ -16,10 +16,12 @@
 //! force, sets plain / degrading / pinching / all four:
 //!
 //! * `f32`, default control (`Series`, which is `Bs32` with an effect on; tol
-//!   1e-5): 2.1e-6 / 7.1e-6 / 6.2e-6 / 6.4e-6 (plain by `Bs32`: 6.5e-6);
+//!   1e-5): 2.1e-6 / 6.0e-6 / 6.0e-6 / 6.6e-6 (before the kink landing of
+//!   `integrate`: 7.1e-6 / 6.2e-6 / 6.4e-6; plain by `Bs32`: 6.5e-6);
 //! * fixed point, default control (`Series`, which is `Bs32` with an effect
-//!   on; tol 2e-4): 3.2e-5 / 1.74e-4 / 3.20e-4 / 2.48e-4 (plain by `Bs32`:
-//!   1.20e-4), within the 1e-3 the library aims for; tolerances below 2e-4
+//!   on; tol 2e-4): 3.2e-5 / 1.12e-4 / 1.61e-4 / 1.66e-4 (before the kink
+//!   landing: 1.74e-4 / 3.20e-4 / 2.48e-4; plain by `Bs32`: 1.20e-4), within
+//!   the 1e-3 the library aims for; tolerances below 2e-4
 //!   gain nothing with `Bs32` (the Q15.16 rounding floor is about 1.2e-4); at 2e-3 `Bs32` was
 //!   off by 1.26e-3 / 8.4e-4 / 3.19e-3 / 2.22e-3, the integration tolerance
 //!   (`f64` with the same control is off by the same amounts).
@@ -39,12 +41,12 @@ use crate::scalar::{Fixed, Scalar};
 use crate::selftest::report;
 
 /// Bound on the `f32` error with the default control, fraction of peak force
-/// (measured worst 7.1e-6).
+/// (measured worst 6.6e-6).
 pub const F32_BOUND: f64 = 1e-4;
 /// Bound on the fixed-point error with the default control (tolerance
-/// 2e-4), fraction of peak force (measured worst 3.2e-4, pinching; at a
-/// looser 2e-3 it was 3.2e-3, below 2e-4 the Q15.16 rounding floor stops the
-/// gain).
+/// 2e-4), fraction of peak force (measured worst 1.7e-4, all four effects;
+/// 3.2e-4 before the kink landing; at a looser 2e-3 it was 3.2e-3, below
+/// 2e-4 the Q15.16 rounding floor stops the gain).
 pub const FIXED_BOUND: f64 = 1e-3;
 /// Bound on `|work - energy| / energy` per block of closed cycles (the
 /// trapezoidal rule's error, measured at most 7.8e-4).
