@@ -403,10 +403,10 @@ pub(crate) struct Kink<S> {
 
 /// The sub-step that moves a component changing at `rate` by `reach`, but
 /// not below `floor`. (A zero rate gives the largest value of the
-/// arithmetic: no limit.)
+/// arithmetic: no limit.) A size, so its value alone ([`Scalar::value`]).
 #[inline]
 pub(crate) fn reach_size<S: Scalar>(reach: S, rate: S, floor: S) -> S {
-    (reach / rate.abs()).max(floor)
+    (reach / rate.abs()).max(floor).value()
 }
 
 /// The smallest sub-step an increment of length `len` takes: 16 units of the
@@ -488,7 +488,11 @@ fn adaptive<S: Scalar, const N: usize, const K: usize, P: Pair>(
         match try_substep::<S, N, P>(ctl, f, x, &y, &dy, h, atol) {
             Ok((y_new, dy_new, ratio)) if ratio <= S::ONE => {
                 // A change of sign first (cheap), then the crossing itself.
-                let signs = |k: &Kink<S>| (y[k.index] < S::ZERO) != (y_new[k.index] < S::ZERO);
+                // (`get`: an index out of range is no kink, not a panic.)
+                let signs = |k: &Kink<S>| match (y.get(k.index), y_new.get(k.index)) {
+                    (Some(&a), Some(&b)) => (a < S::ZERO) != (b < S::ZERO),
+                    _ => false,
+                };
                 if landing.is_none() && kinks.iter().any(signs) {
                     if let Some((frac, kink)) = kink_crossing(&y, &y_new, atol, kinks) {
                         let land = h * frac;
@@ -510,7 +514,9 @@ fn adaptive<S: Scalar, const N: usize, const K: usize, P: Pair>(
                 // there), which the estimate of a grown sub-step can miss:
                 // start again within the kink's reach.
                 if let Some(k) = landing.take() {
-                    h = h.min(reach_size(k.reach, dy[k.index], h_min * S::lit(8.0)));
+                    if let Some(&rate) = dy.get(k.index) {
+                        h = h.min(reach_size(k.reach, rate, h_min * S::lit(8.0)));
+                    }
                 }
                 if last {
                     return Ok(Advanced { y, dy, h_next: h });
@@ -554,9 +560,12 @@ fn kink_crossing<S: Scalar, const N: usize, const K: usize>(
     let mut first: Option<(S, Kink<S>)> = None;
     for kink in kinks {
         let k = kink.index;
-        let (a, b, tol) = (y[k], y_new[k], atol[k]);
+        let (Some(&a), Some(&b), Some(&tol)) = (y.get(k), y_new.get(k), atol.get(k)) else {
+            continue;
+        };
         if (a > tol && b < -tol) || (a < -tol && b > tol) {
-            let frac = a / (a - b);
+            // Where to end the retried sub-step: a size ([`Scalar::value`]).
+            let frac = (a / (a - b)).value();
             if first.is_none_or(|(f, _)| frac < f) {
                 first = Some((frac, kink));
             }

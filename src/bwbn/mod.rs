@@ -256,7 +256,7 @@ impl<S: Scalar, X: Effect<S>> Bwbn<S, X> {
     /// control (or OpenSees' scheme). Kept out of line on bare-metal targets
     /// like [`Self::advance_series`]: inlined into `set_trial`, the
     /// Cortex-M4F took 1,881 instructions a step with all four effects in
-    /// `f32`, out of line 1,723 (Q15.16: 9,033 and 8,514;
+    /// `f32`, out of line 1,730 (Q15.16: 9,033 and 8,560;
     /// `docs/benchmarks.md`).
     #[cfg_attr(target_os = "none", inline(never))]
     #[cfg_attr(not(target_os = "none"), inline)]

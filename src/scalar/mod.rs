@@ -154,6 +154,18 @@ pub trait Scalar:
     fn recip_int(k: usize) -> Self {
         Self::ratio(1, k as i32)
     }
+    /// The value alone, as a constant. The identity for plain numbers; a
+    /// number that carries more than its value (the host's dual numbers carry
+    /// derivatives with respect to parameters) drops the rest. The
+    /// integrators pass their sub-step sizes through it: where a sub-step
+    /// ends is a decision of the error control, and derivatives of the state
+    /// must be those of the sub-steps taken. (A sub-step size that carried
+    /// derivatives fed them back through every later increment's carried size
+    /// and grew them geometrically: to 1e5 in 90 increments, measured.)
+    #[inline(always)]
+    fn value(self) -> Self {
+        self
+    }
     /// +1 for positive, -1 for negative values, 0 for zero.
     #[inline]
     fn signum0(self) -> Self {

@@ -12,9 +12,11 @@
 //! The value part is computed with the same `f64` operations in the same order
 //! as an `f64` simulation, and every comparison (`<`, `==`, `is_finite`) looks
 //! at the value only, so a dual simulation takes the same sub-steps and returns
-//! bit-identical values; the derivatives are those of that computation
-//! (step-size control included, whose dependence on the parameters is of the
-//! order of the integration tolerance).
+//! bit-identical values; the derivatives are those of that computation with
+//! the sub-steps where they fell: the integrators take every sub-step size
+//! through [`Scalar::value`], which drops the derivatives (where the error
+//! control puts a sub-step is not a function of the parameters to
+//! differentiate).
 
 use hysteresis::Scalar;
 use std::ops::{Add, AddAssign, Div, Mul, MulAssign, Neg, Sub, SubAssign};
@@ -174,6 +176,11 @@ impl<const N: usize> Scalar for Dual<N> {
     }
     fn to_f32(self) -> f32 {
         self.v as f32
+    }
+    /// The value as a constant: a sub-step size chosen by the error control
+    /// carries no derivatives (see [`Scalar::value`]).
+    fn value(self) -> Self {
+        Self::cst(self.v)
     }
     fn from_i32(x: i32) -> Self {
         Self::cst(<f64 as Scalar>::from_i32(x))
