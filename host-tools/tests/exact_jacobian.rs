@@ -89,7 +89,7 @@ fn assert_exact(p: &Problem, f: for<'a> fn(&'a Problem) -> LeastSquares<'a>, x: 
     let ((loose, _), (tight, spread)) = (at(1e-10), at(1e-13));
     assert!(tight < 1e-4, "exact and differenced differ by {tight:e}");
     assert!(
-        tight < 0.2 * loose || loose < 3.0 * spread,
+        tight < 0.2 * loose || loose < 3.0 * spread || tight < 1.5 * spread,
         "the difference does not shrink with the tolerance: {loose:e} at 1e-10, {tight:e} at 1e-13 (differences uncertain by {spread:e})"
     );
 }
@@ -130,6 +130,11 @@ fn observer_coupled_jacobian_is_exact() {
 /// (three cycles to 4 displacement scales), at a point inside the bounds where
 /// every effect of `spec` is active.
 fn cyclic(spec: &str) -> (Problem, Vec<f64>) {
+    cyclic_at(spec, 1.4)
+}
+
+/// [`cyclic`] with the exponent `n`.
+fn cyclic_at(spec: &str, n: f64) -> (Problem, Vec<f64>) {
     let u: Vec<f64> = (0..=1200)
         .map(|i| {
             let t = i as f64 / 400.0;
@@ -150,7 +155,7 @@ fn cyclic(spec: &str) -> (Problem, Vec<f64>) {
         .map(|f| match f.spec.name {
             "k0" => 1.0,
             "alpha" => 0.1,
-            "n" => 1.4,
+            "n" => n,
             "beta" => 0.6,
             "gamma" => 0.2,
             _ => f.lo + 0.2 * (f.hi - f.lo),
@@ -174,6 +179,17 @@ fn displacement_driven_series_jacobian_is_exact() {
 fn displacement_driven_bwbn_jacobian_is_exact() {
     let (p, x) = cyclic("bwbn");
     assert_eq!(p.dim(), 17);
+    assert_exact(&p, free, &x);
+}
+
+/// Below n = 1 the right-hand side's derivative in z, `n |z|^(n-1)`, is
+/// unbounded at z = 0, next to which the element's sub-steps end when they
+/// land on it: before such a sub-step the derivatives are moved along the
+/// solution (`integrate::shift_along`), so the Jacobian stays exact. (Without
+/// the shift this set was 4.1e-4 off at 1e-13.)
+#[test]
+fn displacement_driven_bwbn_jacobian_is_exact_below_n_1() {
+    let (p, x) = cyclic_at("bwbn", 0.6);
     assert_exact(&p, free, &x);
 }
 

@@ -93,6 +93,12 @@ pub trait Scalar:
     const MIN_POSITIVE: Self;
     /// Short name used in table headers and error messages (`"f64"`, `"f32"`, `"q16"`).
     const NAME: &'static str;
+    /// Whether a number carries more than its value (the host's dual numbers
+    /// carry derivatives with respect to parameters): the integrators then
+    /// keep those derivatives well-defined where the model is not smooth
+    /// (see `integrate::advance`). False for plain numbers, whose code paths
+    /// this compiles out of.
+    const CARRIES_DERIVATIVES: bool = false;
 
     /// Converts a literal. Models only call it with constants, which the
     /// compiler folds, so no float arithmetic reaches fixed-point code paths.

@@ -164,6 +164,7 @@ impl<const N: usize> Scalar for Dual<N> {
     const EPSILON: Self = Self::cst(f64::EPSILON);
     const MIN_POSITIVE: Self = Self::cst(f64::MIN_POSITIVE);
     const NAME: &'static str = "dual";
+    const CARRIES_DERIVATIVES: bool = true;
 
     fn lit(x: f32) -> Self {
         Self::cst(<f64 as Scalar>::lit(x))
