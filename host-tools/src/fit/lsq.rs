@@ -163,6 +163,17 @@ where
     })
 }
 
+/// Whether a trial step that took the cost from `c` to `cn` is accepted: the
+/// cost fell, and by at least 1e-4 of the decrease the linear model
+/// predicted, which must be positive (MINPACK's rule). A step the linear
+/// model does not call a descent is not taken on luck: on the thesis' BW
+/// example such a step (clamped to the bounds, predicted -0.019, actual
+/// +0.031 of a cost of 0.27) led one fit of twenty to a degenerate corner
+/// (beta = 0, n at its bound) it never left.
+fn gain_accepted(c: f64, cn: f64, predicted: f64) -> bool {
+    cn < c && predicted > 0.0 && c - cn >= 1e-4 * predicted
+}
+
 /// Minimises `||f(x)||^2` over the box from `x0`. Returns `None` if `f(x0)`
 /// cannot be evaluated.
 ///
@@ -244,8 +255,12 @@ where
                 break 'outer;
             }
             evals += 1;
+            // The decrease the linear model predicts for the step as taken
+            // (clamped to the box, which can make it predict an increase).
+            let step = DVector::from_iterator(n, xn.iter().zip(&x).map(|(a, b)| a - b));
+            let predicted = c - (DVector::from_column_slice(&r) + &jac * step).norm_squared();
             match f.residuals(&xn) {
-                Some(rn) if cost(&rn) < c => {
+                Some(rn) if gain_accepted(c, cost(&rn), predicted) => {
                     let cn = cost(&rn);
                     let small = c - cn < opts.f_tol * c;
                     // Exact where it can be had at this point, else
