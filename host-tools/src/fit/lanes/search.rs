@@ -627,8 +627,15 @@ pub(crate) mod tests {
     }
 
     /// A candidate whose fixed-step run is not finite is simulated again with [`RETRY`] times
-    /// the steps, which scores it as the core does (within the search's tolerance), and the
-    /// summary counts it.
+    /// the steps, which scores it about as the core does, and the summary counts it.
+    ///
+    /// About: such a candidate is stiff, and the first one found is at the edge of the
+    /// retry's stability, where RK4 is stable but not accurate to the search's tolerance. It
+    /// scores 29.85 against the core's 29.4108266 (1.5%; at 16 and 64 times the steps
+    /// 29.4108271 and 29.4108270). The search only has to rank it far below candidates within
+    /// the search's tolerance of a fit (a good fit's NRMSE is about 1e-3), which 2% does. (Until
+    /// the core's oscillator landed its sub-steps on v = 0 and z = 0 it was itself 1.5% off here,
+    /// and agreed with the retry to 1e-3.)
     #[test]
     fn a_candidate_that_blows_up_is_simulated_again_with_more_steps() {
         let p = problem(ModelSpec::BW, 100.0);
@@ -658,7 +665,7 @@ pub(crate) mod tests {
         assert_eq!(scored, retried);
         let core = p.scores(&x).unwrap().nrmse;
         assert!(
-            (retried - core).abs() <= SEARCH_TOLERANCE,
+            (retried - core).abs() <= 0.02 * core && core > 1e3 * SEARCH_TOLERANCE,
             "{retried} against the core's {core}"
         );
         let summary = model.summary();
