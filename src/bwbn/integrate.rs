@@ -40,7 +40,8 @@
 //! in `f32`, 0.10 in Q15.16, each accepted as `Ok`). So
 //!
 //! * a sub-step that carries a *kink component* (z for the element: `|z|^n`
-//!   and `sgn(z du)` change form at z = 0) across zero is retried once,
+//!   and `sgn(z du)` change form at z = 0; v and z for the oscillator under
+//!   Dormand-Prince, where `sgn(v z)` flips) across zero is retried once,
 //!   shortened to end where the secant puts the zero, and the sub-step after
 //!   it moves the component by at most its reach ([`advance`]'s `kinks`);
 //! * the caller starts an increment that reverses the direction of loading
@@ -391,7 +392,8 @@ pub(crate) struct Advanced<S, const N: usize> {
 pub const REVERSAL_REACH: f32 = 0.02;
 
 /// A component of the state at whose zero the right-hand side is not smooth
-/// (z for the element: `|z|^n` and `sgn(z du)` change form there).
+/// (z for the element: `|z|^n` and `sgn(z du)` change form there; v and z
+/// for the oscillator).
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Kink<S> {
     /// Which component.
