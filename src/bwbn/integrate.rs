@@ -505,7 +505,16 @@ fn adaptive<S: Scalar, const N: usize, const K: usize, P: Pair>(
                             landing = Some(kink);
                             if S::CARRIES_DERIVATIVES {
                                 shift_along(&mut x, &mut y, &dy, kink.index);
-                                dy = f(x, &y)?;
+                                // The shifted state's derivatives need the
+                                // rate again; its value stays the one plain
+                                // numbers carry (which may come from the end
+                                // of the last increment and differ from a
+                                // fresh evaluation in the last place), so
+                                // that values match plain runs bit for bit.
+                                let fresh = f(x, &y)?;
+                                for (d, g) in dy.iter_mut().zip(fresh) {
+                                    *d = g - g.value() + d.value();
+                                }
                             }
                             continue;
                         }
