@@ -3,8 +3,10 @@
 //! and n identified, k known), started at 130 % and at 70 % of the truth. Issue target: at most
 //! 10 ms a fit. `host-tools/tests/thesis_bw_example.rs` proves that these fits reach the truth.
 //! Side by side: the Jacobian exact (one simulation in dual numbers, what `hyst fit` uses) and
-//! by forward differences (one simulation per parameter, on all cores); and the exact one with
-//! the stopping rule used before 2026-11-25 (`x_tol` 1e-10 instead of 1e-8).
+//! by forward differences (one simulation per parameter, on all cores); the exact one with
+//! trials simulated apart from their Jacobians (`jacobian_with_trial` off, as before
+//! 2026-11-29); and the exact one with the stopping rule used before 2026-11-25 (`x_tol` 1e-10
+//! instead of 1e-8).
 //!
 //!     cargo bench -p hysteresis-host --bench lsq_bw
 
@@ -32,8 +34,13 @@ fn fit(c: &mut Criterion) {
             x_tol: 1e-10,
             ..Options::default()
         };
-        let variants: [(&str, &dyn Residuals, Options); 3] = [
+        let apart = Options {
+            jacobian_with_trial: false,
+            ..Options::default()
+        };
+        let variants: [(&str, &dyn Residuals, Options); 4] = [
             ("exact Jacobian", &exact, Options::default()),
+            ("exact Jacobian, trials apart", &exact, apart),
             ("differenced Jacobian", &differenced, Options::default()),
             ("exact Jacobian, x_tol 1e-10", &exact, strict),
         ];

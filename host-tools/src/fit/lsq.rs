@@ -27,6 +27,11 @@ pub struct Options {
     pub f_tol: f64,
     /// Relative finite-difference step (of the bound range).
     pub fd_step: f64,
+    /// While the Jacobian is exact and trials are accepted, evaluate each
+    /// trial with its Jacobian from one simulation (see [`minimize`]). Off,
+    /// trials are plain and an accepted one is simulated again for its
+    /// Jacobian: the same path at more simulations (kept for comparison).
+    pub jacobian_with_trial: bool,
 }
 
 impl Default for Options {
@@ -36,6 +41,7 @@ impl Default for Options {
             x_tol: 1e-8,
             f_tol: 1e-12,
             fd_step: 1e-6,
+            jacobian_with_trial: true,
         }
     }
 }
@@ -188,11 +194,15 @@ fn predicted_decrease(r: &[f64], jac: &DMatrix<f64>, step: &DVector<f64>) -> f64
 /// Minimises `||f(x)||^2` over the box from `x0`. Returns `None` if `f(x0)`
 /// cannot be evaluated.
 ///
-/// Trial points are evaluated alone; at an accepted one the Jacobian is
-/// computed exactly where `f` can at that point (one more evaluation,
-/// counted as one in [`Solution::evaluations`]) and differenced otherwise
-/// (one evaluation per variable). A fit can so start differenced (where the
-/// exact path refuses) and go exact when it leaves that point.
+/// At an accepted point the Jacobian is computed exactly where `f` can at
+/// that point (counted as one evaluation in [`Solution::evaluations`]) and
+/// differenced otherwise (one evaluation per variable). A fit can so start
+/// differenced (where the exact path refuses) and go exact when it leaves
+/// that point. While the Jacobian is exact and the last trial was accepted,
+/// the next trial is evaluated with its Jacobian in one go (one evaluation;
+/// if `f` refuses there, a second, plain one); after a rejection trials are
+/// evaluated alone until one is accepted. The path is the same either way
+/// wherever `f`'s two evaluations return the same residuals.
 pub fn minimize<F>(f: &F, x0: &[f64], lo: &[f64], hi: &[f64], opts: Options) -> Option<Solution>
 where
     F: Residuals + ?Sized,
@@ -220,6 +230,12 @@ where
         .map(|(v, (l, h))| v.clamp(*l, *h))
         .collect();
     let (mut r, mut jac, mut evals) = evaluate(f, &x, lo, hi, opts.fd_step)?;
+    // Whether the next trial is evaluated with its exact Jacobian at once:
+    // while steps are accepted (most are, away from the noise floor) the
+    // Jacobian is needed at the trial point anyway, and computing both from
+    // one simulation in dual numbers spares the plain one. After a rejection
+    // the trials are plain until one is accepted.
+    let mut speculate = opts.jacobian_with_trial && evals == 1;
     let mut c = cost(&r);
     let mut mu = 1e-3;
     let mut iterations = 0;
@@ -270,20 +286,30 @@ where
             // (clamped to the box, which can make it predict an increase).
             let step = DVector::from_iterator(n, xn.iter().zip(&x).map(|(a, b)| a - b));
             let predicted = predicted_decrease(&r, &jac, &step);
-            match f.residuals(&xn) {
+            let (trial, trial_jac) = match speculate.then(|| f.residuals_jacobian(&xn)) {
+                Some(Some((rn, j))) => (Some(rn), Some(j)),
+                Some(None) => {
+                    evals += 1;
+                    (f.residuals(&xn), None)
+                }
+                None => (f.residuals(&xn), None),
+            };
+            match trial {
                 Some(rn) if gain_accepted(c, cost(&rn), predicted) => {
                     let cn = cost(&rn);
                     let small = c - cn < opts.f_tol * c;
                     // Exact where it can be had at this point, else
                     // differenced.
-                    jac = match f.residuals_jacobian(&xn) {
-                        Some((_, j)) => {
+                    (jac, speculate) = match trial_jac.or_else(|| {
+                        f.residuals_jacobian(&xn).map(|(_, j)| {
                             evals += 1;
                             j
-                        }
+                        })
+                    }) {
+                        Some(j) => (j, opts.jacobian_with_trial),
                         None => {
                             evals += n;
-                            jacobian(f, &xn, &rn, lo, hi, opts.fd_step)?
+                            (jacobian(f, &xn, &rn, lo, hi, opts.fd_step)?, false)
                         }
                     };
                     x = xn;
@@ -297,7 +323,10 @@ where
                     }
                     break;
                 }
-                _ => mu *= 4.0,
+                _ => {
+                    mu *= 4.0;
+                    speculate = false;
+                }
             }
         }
         if !accepted {
@@ -398,57 +427,108 @@ mod tests {
         assert!(s.cost < 1e-16);
     }
 
+    use std::sync::atomic::{AtomicUsize, Ordering};
+
+    /// `r_i = a exp(-b t_i) - y_i` with its exact Jacobian, counting both
+    /// kinds of evaluation; the exact one is refused at `refuse`.
+    struct Decay {
+        t: Vec<f64>,
+        y: Vec<f64>,
+        refuse: [f64; 2],
+        plain: AtomicUsize,
+        exact: AtomicUsize,
+    }
+
+    impl Residuals for Decay {
+        fn residuals(&self, p: &[f64]) -> Option<Vec<f64>> {
+            self.plain.fetch_add(1, Ordering::Relaxed);
+            Some(self.values(p))
+        }
+        fn residuals_jacobian(&self, p: &[f64]) -> Option<(Vec<f64>, DMatrix<f64>)> {
+            if p == self.refuse {
+                return None;
+            }
+            self.exact.fetch_add(1, Ordering::Relaxed);
+            let jac = DMatrix::from_fn(self.t.len(), 2, |i, j| {
+                let e = (-p[1] * self.t[i]).exp();
+                [e, -p[0] * self.t[i] * e][j]
+            });
+            Some((self.values(p), jac))
+        }
+    }
+
+    impl Decay {
+        /// Data from a = 3, b = 1.3.
+        fn new(refuse: [f64; 2]) -> Self {
+            let t: Vec<f64> = (0..50).map(|i| i as f64 * 0.1).collect();
+            let y = t.iter().map(|t| 3.0 * (-1.3 * t).exp()).collect();
+            Decay {
+                t,
+                y,
+                refuse,
+                plain: AtomicUsize::new(0),
+                exact: AtomicUsize::new(0),
+            }
+        }
+        fn values(&self, p: &[f64]) -> Vec<f64> {
+            let r = self.t.iter().zip(&self.y);
+            r.map(|(t, y)| p[0] * (-p[1] * t).exp() - y).collect()
+        }
+        fn calls(&self) -> (usize, usize) {
+            (
+                self.plain.load(Ordering::Relaxed),
+                self.exact.load(Ordering::Relaxed),
+            )
+        }
+    }
+
     /// The exponential fit with an exact Jacobian that is refused at the
     /// starting point (as the dual path refuses pinching at zeta0 = 0): the
     /// solver differences there and goes exact once it has moved.
     #[test]
     fn goes_exact_after_a_start_where_the_exact_jacobian_is_refused() {
-        use std::sync::atomic::{AtomicUsize, Ordering};
-        struct Decay {
-            t: Vec<f64>,
-            y: Vec<f64>,
-            start: [f64; 2],
-            plain: AtomicUsize,
-            exact: AtomicUsize,
-        }
-        impl Residuals for Decay {
-            fn residuals(&self, p: &[f64]) -> Option<Vec<f64>> {
-                self.plain.fetch_add(1, Ordering::Relaxed);
-                Some(self.values(p))
-            }
-            fn residuals_jacobian(&self, p: &[f64]) -> Option<(Vec<f64>, DMatrix<f64>)> {
-                if p == self.start {
-                    return None;
-                }
-                self.exact.fetch_add(1, Ordering::Relaxed);
-                let jac = DMatrix::from_fn(self.t.len(), 2, |i, j| {
-                    let e = (-p[1] * self.t[i]).exp();
-                    [e, -p[0] * self.t[i] * e][j]
-                });
-                Some((self.values(p), jac))
-            }
-        }
-        impl Decay {
-            fn values(&self, p: &[f64]) -> Vec<f64> {
-                let r = self.t.iter().zip(&self.y);
-                r.map(|(t, y)| p[0] * (-p[1] * t).exp() - y).collect()
-            }
-        }
-        let t: Vec<f64> = (0..50).map(|i| i as f64 * 0.1).collect();
-        let y = t.iter().map(|t| 3.0 * (-1.3 * t).exp()).collect();
         let start = [1.0, 0.2];
-        let f = Decay {
-            t,
-            y,
-            start,
-            plain: AtomicUsize::new(0),
-            exact: AtomicUsize::new(0),
-        };
+        let f = Decay::new(start);
         let s = minimize(&f, &start, &[0.0, 0.0], &[10.0, 10.0], Options::default()).unwrap();
         assert!((s.x[0] - 3.0).abs() < 1e-6 && (s.x[1] - 1.3).abs() < 1e-6);
-        let exact = f.exact.load(Ordering::Relaxed);
+        let (plain, exact) = f.calls();
         assert!(exact > 0, "never exact after the start");
         // The count is honest: every plain and every exact evaluation.
-        assert_eq!(s.evaluations, f.plain.load(Ordering::Relaxed) + exact);
+        assert_eq!(s.evaluations, plain + exact);
+    }
+
+    /// Evaluating accepted trials with their Jacobian takes the same path
+    /// (the same iterates, to the last bit, since both evaluations return the
+    /// same residuals) at fewer evaluations: every accepted trial but those
+    /// after a rejection spares its second one.
+    #[test]
+    fn trials_with_their_jacobian_take_the_same_path_in_fewer_evaluations() {
+        let run = |jacobian_with_trial: bool| {
+            let f = Decay::new([f64::NAN; 2]);
+            let opts = Options {
+                jacobian_with_trial,
+                ..Options::default()
+            };
+            let s = minimize(&f, &[1.0, 0.2], &[0.0, 0.0], &[10.0, 10.0], opts).unwrap();
+            let (plain, exact) = f.calls();
+            assert_eq!(s.evaluations, plain + exact, "the count is honest");
+            (s, plain, exact)
+        };
+        let (together, plain_t, exact_t) = run(true);
+        let (apart, plain_a, exact_a) = run(false);
+        assert_eq!(together.x, apart.x);
+        assert_eq!(together.iterations, apart.iterations);
+        assert!((together.x[0] - 3.0).abs() < 1e-6 && (together.x[1] - 1.3).abs() < 1e-6);
+        // Apart: one exact evaluation at the start and one per accepted
+        // trial, every trial plain. Together: the accepted trials' exact
+        // evaluations are the trials themselves (plus any trial rejected
+        // after it was evaluated exactly).
+        assert!(exact_t >= exact_a && plain_t < plain_a);
+        assert!(
+            together.evaluations < apart.evaluations,
+            "{} against {}",
+            together.evaluations,
+            apart.evaluations
+        );
     }
 }
