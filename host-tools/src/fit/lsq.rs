@@ -286,11 +286,13 @@ where
             // (clamped to the box, which can make it predict an increase).
             let step = DVector::from_iterator(n, xn.iter().zip(&x).map(|(a, b)| a - b));
             let predicted = predicted_decrease(&r, &jac, &step);
+            // The trial's residuals and, if it was asked for and given, its
+            // exact Jacobian (`Some(None)`: asked for and refused).
             let (trial, trial_jac) = match speculate.then(|| f.residuals_jacobian(&xn)) {
-                Some(Some((rn, j))) => (Some(rn), Some(j)),
+                Some(Some((rn, j))) => (Some(rn), Some(Some(j))),
                 Some(None) => {
                     evals += 1;
-                    (f.residuals(&xn), None)
+                    (f.residuals(&xn), Some(None))
                 }
                 None => (f.residuals(&xn), None),
             };
@@ -300,12 +302,13 @@ where
                     let small = c - cn < opts.f_tol * c;
                     // Exact where it can be had at this point, else
                     // differenced.
-                    (jac, speculate) = match trial_jac.or_else(|| {
+                    let exact = trial_jac.unwrap_or_else(|| {
                         f.residuals_jacobian(&xn).map(|(_, j)| {
                             evals += 1;
                             j
                         })
-                    }) {
+                    });
+                    (jac, speculate) = match exact {
                         Some(j) => (j, opts.jacobian_with_trial),
                         None => {
                             evals += n;
@@ -435,6 +438,8 @@ mod tests {
         t: Vec<f64>,
         y: Vec<f64>,
         refuse: [f64; 2],
+        /// The exact Jacobian is also refused where b is in this range.
+        refuse_b: std::ops::Range<f64>,
         plain: AtomicUsize,
         exact: AtomicUsize,
     }
@@ -445,7 +450,7 @@ mod tests {
             Some(self.values(p))
         }
         fn residuals_jacobian(&self, p: &[f64]) -> Option<(Vec<f64>, DMatrix<f64>)> {
-            if p == self.refuse {
+            if p == self.refuse || self.refuse_b.contains(&p[1]) {
                 return None;
             }
             self.exact.fetch_add(1, Ordering::Relaxed);
@@ -466,6 +471,7 @@ mod tests {
                 t,
                 y,
                 refuse,
+                refuse_b: 0.0..0.0,
                 plain: AtomicUsize::new(0),
                 exact: AtomicUsize::new(0),
             }
@@ -495,6 +501,30 @@ mod tests {
         assert!(exact > 0, "never exact after the start");
         // The count is honest: every plain and every exact evaluation.
         assert_eq!(s.evaluations, plain + exact);
+    }
+
+    /// Where the exact Jacobian is refused over a band (0.5 <= b < 0.9,
+    /// crossed on the way from b = 0.2 to 1.3), a trial asked for it there
+    /// is evaluated plain and an accepted point is differenced: the fit
+    /// still converges, and the refused request counts as an evaluation.
+    #[test]
+    fn a_trial_refused_its_jacobian_is_evaluated_plain() {
+        let mut f = Decay::new([f64::NAN; 2]);
+        f.refuse_b = 0.5..0.9;
+        let s = minimize(
+            &f,
+            &[1.0, 0.2],
+            &[0.0, 0.0],
+            &[10.0, 10.0],
+            Options::default(),
+        )
+        .unwrap();
+        assert!((s.x[0] - 3.0).abs() < 1e-6 && (s.x[1] - 1.3).abs() < 1e-6);
+        let (plain, exact) = f.calls();
+        assert!(exact > 0 && plain > 0);
+        // One trial asked for its Jacobian was refused (it is counted, and
+        // neither counter saw it).
+        assert_eq!(s.evaluations, plain + exact + 1);
     }
 
     /// Evaluating accepted trials with their Jacobian takes the same path
