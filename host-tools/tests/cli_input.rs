@@ -6,7 +6,7 @@
 #[path = "support/cli.rs"]
 mod cli;
 
-use cli::{hyst, ok, write};
+use cli::{err, hyst, ok, write};
 use std::process::{Command, Output, Stdio};
 
 /// Plain Bouc-Wen parameters.
@@ -205,6 +205,94 @@ fn force_driven_fit_files_carry_their_mass_to_every_verb() {
     ]));
     let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     assert!(v["nrmse"].as_f64().unwrap() < 1e-4, "{v}");
+}
+
+/// A parameter set the record cannot be run with is an error naming the sample, not a table:
+/// with `beta + gamma = -3` and n = 2, z runs off to infinity before u reaches
+/// pi / (2 sqrt 3) = 0.91 mm (`dz/du = 1 + 3 z^2`), and the record goes to 4 mm.
+/// `sensitivity` printed every error as 0 and ranked the parameters; `diagnose` blamed
+/// "the given parameters, or ones next to them".
+#[test]
+fn parameters_the_record_cannot_run_are_refused_with_the_failing_sample() {
+    let data = write("runaway-record.csv", &column_record());
+    let params = write(
+        "runaway.json",
+        r#"{"model": "bw", "k0": 6, "alpha": 0.1, "n": 2, "beta": -2, "gamma": -1}"#,
+    );
+    for verb in ["sensitivity", "diagnose"] {
+        let e = err(hyst(&[verb, &data, "--params", &params]));
+        assert!(
+            e.contains("runaway-record.csv")
+                && e.contains("runaway.json")
+                && e.contains("step to sample"),
+            "{verb}: {e}"
+        );
+    }
+}
+
+/// `sensitivity` sweeps what it says: fewer than three levels is an error (it was
+/// quietly three), and a parameter at zero is swept over its fitting range, which the
+/// output says, as it counts the changes that could not be simulated.
+#[test]
+fn sensitivity_says_what_it_swept() {
+    let data = write("sweep-record.csv", &column_record());
+    let params = write(
+        "sweep.json",
+        r#"{"model": "bw", "k0": 6, "alpha": 0, "n": 1, "beta": 0.5, "gamma": 0.5}"#,
+    );
+    let e = err(hyst(&[
+        "sensitivity",
+        &data,
+        "--params",
+        &params,
+        "--levels",
+        "2",
+    ]));
+    assert!(e.contains("at least 3 levels"), "{e}");
+    let out = ok(hyst(&["sensitivity", &data, "--params", &params, "--json"]));
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let alpha = v
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|s| s["name"] == "alpha")
+        .unwrap();
+    assert_eq!(alpha["of_range"], true, "{alpha}");
+    // alpha < 0 is not a parameter set: the five negative changes of eleven.
+    assert_eq!(alpha["not_simulated"], 5, "{alpha}");
+    let text =
+        String::from_utf8(ok(hyst(&["sensitivity", &data, "--params", &params])).stdout).unwrap();
+    assert!(text.contains("fitting range"), "{text}");
+    assert!(text.contains("not simulated"), "{text}");
+}
+
+/// A force-driven record needs the fit's damping: a file without `xi` is refused (it
+/// was swept at a made-up 0.05), and a mass that is not positive names its place.
+#[test]
+fn force_driven_verbs_make_up_no_damping_and_place_a_bad_mass() {
+    let data = thesis_example("bw-no-xi.csv", 600);
+    let no_xi = write(
+        "no-xi.json",
+        r#"{"model": "bw", "k0": 6, "alpha": 0.2, "n": 1.2, "beta": 2, "gamma": -1, "m": 500}"#,
+    );
+    for verb in ["sensitivity", "diagnose"] {
+        let e = err(hyst(&[verb, &data, "--params", &no_xi]));
+        assert!(
+            e.contains("no `xi`") && e.contains("no-xi.json"),
+            "{verb}: {e}"
+        );
+    }
+    let bad_mass = write(
+        "bad-mass.json",
+        "{\"model\": \"bw\", \"k0\": 6, \"alpha\": 0.2, \"n\": 1.2, \"beta\": 2,\n \"gamma\": -1, \"xi\": 0.05, \"m\": -5}",
+    );
+    for verb in ["sensitivity", "diagnose", "simulate"] {
+        let e = err(hyst(&[verb, &data, "--params", &bad_mass]));
+        assert!(
+            e.contains("bad-mass.json:2:") && e.contains("got -5"),
+            "{verb}: {e}"
+        );
+    }
 }
 
 /// A PHM file (phm_cli.rs's asymmetric column).

@@ -3,7 +3,7 @@
 //! missing.
 
 use super::columns::ReadArgs;
-use super::fit::{load_timed, parse_fix, Bar, Loaded};
+use super::fit::{given_point, load_timed, mass_of, parse_fix, Bar, Loaded};
 use super::ForcingArgs;
 use crate::discover::rate::{self, RateCheck};
 use crate::discover::slip::{self, SlipCheck};
@@ -17,7 +17,6 @@ use crate::report::Report;
 use anyhow::{anyhow, bail, Context, Result};
 use clap::Args;
 use serde_json::{json, Value};
-use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
 /// Options shared by `diagnose` and `discover`.
@@ -108,9 +107,7 @@ pub fn initial_fit(common: &Common, params: Option<&Path>, bar: &Bar) -> Result<
     let file = params.map(ParamFile::read).transpose()?;
     let forcing = common.forcing.or_file(file.as_ref())?;
     // A fit of the oscillator carries its mass (kg), as `simulate` reads it.
-    let mass = common
-        .mass
-        .or_else(|| file.as_ref().and_then(|f| f.values.get("m").copied()));
+    let mass = mass_of(common.mass, file.as_ref())?;
     let Loaded {
         exp,
         time,
@@ -127,10 +124,7 @@ pub fn initial_fit(common: &Common, params: Option<&Path>, bar: &Bar) -> Result<
     let outcome = match file {
         Some(file) => {
             file.spec(Some(common.model))?;
-            file.build(common.model, problem.par.dynamic)?;
-            let values: BTreeMap<&str, f64> =
-                file.values.iter().map(|(k, v)| (k.as_str(), *v)).collect();
-            let x = problem.par.normalise(&values);
+            let x = given_point(&file, &problem, &common.data)?;
             run::evaluate_at(&problem, &x, "given")?
         }
         None => run::fit(&problem, Method::Auto, &problem.par.default_start(), bar)?,

@@ -3,18 +3,19 @@
 use super::columns::ReadArgs;
 use super::{ForcingArgs, ModelArg};
 use crate::data;
-use crate::fit::experiment::{Between, Drive, Experiment};
+use crate::fit::experiment::{Between, Drive, Experiment, SimError};
 use crate::fit::input_noise::{self, Monotone};
 use crate::fit::nsga2::{BinaryCrossover, Encoding, Nsga2};
 use crate::fit::objectives::Scores;
 use crate::fit::problem::Problem;
 use crate::fit::run::{self, Evolution, Method, Outcome, Progress};
-use crate::model::{to_json, PHM_MODEL};
+use crate::model::{to_json, ParamFile, PHM_MODEL};
 use anyhow::{anyhow, bail, Context, Result};
 use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
 use serde_json::{json, Value};
-use std::path::PathBuf;
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 /// Arguments of `hyst fit`.
@@ -146,6 +147,50 @@ impl Progress for Bar {
     }
     fn status(&self, message: &str) {
         self.0.set_message(message.to_string());
+    }
+}
+
+/// The mass (kg) of a force-driven model: `--mass` if given, else the
+/// parameter file's `m`. A value that is not a positive number is an error
+/// that says where it came from.
+pub fn mass_of(given: Option<f64>, file: Option<&ParamFile>) -> Result<Option<f64>> {
+    let (mass, source) = match (given, file) {
+        (Some(m), _) => (m, "--mass".to_string()),
+        (None, Some(f)) => match f.values.get("m") {
+            Some(&m) => (m, f.at(&["m"])),
+            None => return Ok(None),
+        },
+        (None, None) => return Ok(None),
+    };
+    if !(mass.is_finite() && mass > 0.0) {
+        bail!("{source}: the mass must be a positive number of kg, got {mass}");
+    }
+    Ok(Some(mass))
+}
+
+/// The values of the parameter file `file` as a point of `problem` (the
+/// record `data` with the file's model), after checking that the model can
+/// be simulated there: a rejected value names its place in the file, a
+/// failed step its sample. A force-driven fit needs the file's `xi` unless
+/// it is fixed: no damping is made up.
+pub fn given_point(file: &ParamFile, problem: &Problem, data: &Path) -> Result<Vec<f64>> {
+    file.build(problem.par.spec, problem.par.dynamic)?;
+    if problem.par.names().contains(&"xi") && !file.values.contains_key("xi") {
+        bail!(
+            "{}: no `xi` (viscous damping ratio): a force-driven record needs the parameters of a force-driven fit",
+            file.path.display()
+        );
+    }
+    let values: BTreeMap<&str, f64> = file.values.iter().map(|(k, v)| (k.as_str(), *v)).collect();
+    let x = problem.par.normalise(&values);
+    match problem.try_predict(&x) {
+        Ok(_) => Ok(x),
+        Err(SimError::Params(e)) => bail!("{}: {e}", file.at(&[e.field])),
+        Err(e @ SimError::Step(..)) => bail!(
+            "{}: the parameters of {} cannot be simulated on this record: {e}",
+            data.display(),
+            file.path.display()
+        ),
     }
 }
 

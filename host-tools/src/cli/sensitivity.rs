@@ -2,7 +2,7 @@
 //! the fitted model (thesis section 3.5.3, Table 3.5, Fig. 3.7).
 
 use super::columns::ReadArgs;
-use super::fit::load;
+use super::fit::{given_point, load, mass_of};
 use super::ForcingArgs;
 use crate::fit::problem::Problem;
 use crate::fit::sensitivity;
@@ -10,7 +10,6 @@ use crate::model::{ModelSpec, ParamFile};
 use crate::report::plots::{sensitivity as plot, Signal};
 use anyhow::{Context, Result};
 use clap::Args;
-use std::collections::BTreeMap;
 use std::path::PathBuf;
 
 /// Arguments of `hyst sensitivity`.
@@ -48,13 +47,11 @@ pub fn run(args: SensitivityArgs) -> Result<()> {
     let spec = file.spec(args.model)?;
     let forcing = args.forcing.or_file(Some(&file))?;
     // A fit of the oscillator carries its mass (kg), as `simulate` reads it.
-    let mass = args.mass.or_else(|| file.values.get("m").copied());
+    let mass = mass_of(args.mass, Some(&file))?;
     let exp = load(&args.data, &args.read, mass, forcing)?;
     let problem = Problem::new(spec, exp, &[]).with_context(|| args.data.display().to_string())?;
-    file.build(spec, problem.par.dynamic)?;
-    let values: BTreeMap<&str, f64> = file.values.iter().map(|(k, v)| (k.as_str(), *v)).collect();
-    let x = problem.par.normalise(&values);
-    let sweeps = sensitivity::analyse(&problem, &x, args.levels.max(3));
+    let x = given_point(&file, &problem, &args.data)?;
+    let sweeps = sensitivity::analyse(&problem, &x, args.levels)?;
     if let Some(path) = &args.plot {
         let change: Vec<f64> = sweeps
             .first()
@@ -74,19 +71,29 @@ pub fn run(args: SensitivityArgs) -> Result<()> {
         outln!("{}", serde_json::to_string_pretty(&ranked)?);
     } else {
         outln!(
-            "{:<12} {:>14} {:>18} {:>5}",
+            "{:<12} {:>14} {:>18} {:>5} {:>14}",
             "parameter",
             "value",
             "max e (eq. 3.25)",
-            "rank"
+            "rank",
+            "not simulated"
         );
-        for s in ranked {
+        for s in &ranked {
             outln!(
-                "{:<12} {:>14.6e} {:>18.6e} {:>5}",
-                s.name,
+                "{:<12} {:>14.6e} {:>18.6e} {:>5} {:>14}",
+                format!("{}{}", s.name, if s.of_range { "*" } else { "" }),
                 s.nominal,
                 s.max_error,
-                s.rank
+                s.rank,
+                format!("{} of {}", s.not_simulated, s.changes.len())
+            );
+        }
+        if ranked.iter().any(|s| s.of_range) {
+            outln!("* zero: swept over -50%..+50% of its fitting range instead of its value");
+        }
+        if ranked.iter().any(|s| s.not_simulated > 0) {
+            outln!(
+                "not simulated: changes that made the set invalid or a step fail; max e is over the others"
             );
         }
     }

@@ -6,6 +6,7 @@
 //! [`phm`](super::phm)).
 
 use super::columns::ReadArgs;
+use super::fit::mass_of;
 use super::{ForcingArgs, ModelArg};
 use crate::data::{self, Channel};
 use crate::fit::experiment::SimError;
@@ -191,16 +192,12 @@ fn forced(
     for n in record.notices() {
         eprintln!("note: {n}");
     }
-    let mass = match (args.mass, file.values.get("m")) {
-        (Some(m), _) | (None, Some(&m)) => m,
-        (None, None) => bail!(
+    let Some(mass) = mass_of(args.mass, Some(file))? else {
+        bail!(
             "{src}: the record is driven by force, so the oscillator needs its mass: give --mass KG (or an `m` in {})",
             file.path.display()
-        ),
+        )
     };
-    if !(mass.is_finite() && mass > 0.0) {
-        bail!("the mass must be a positive number of kg, got {mass}");
-    }
     let xi = *file.values.get("xi").ok_or_else(|| {
         anyhow!(
             "{}: no `xi` (viscous damping ratio): a force-driven simulation needs the parameters of a force-driven fit",

@@ -2,7 +2,7 @@
 //! function of a normalised parameter vector.
 
 use super::dual::Dual;
-use super::experiment::{Drive, Experiment, Prediction};
+use super::experiment::{Drive, Experiment, Prediction, SimError};
 use super::lanes::{SearchModel, SearchSummary, Unsuited, LANES};
 use super::lsq::Residuals;
 use super::objectives::{Scores, Target, ENVELOPE_FLOOR};
@@ -101,10 +101,13 @@ impl Problem {
 
     /// The prediction at `x` (None: invalid parameters or a failed step).
     pub fn predict(&self, x: &[f64]) -> Option<Prediction> {
-        let c = self.params(x)?;
-        self.exp
-            .simulate(&c.params, &c.extras, c.xi, self.control)
-            .ok()
+        self.try_predict(x).ok()
+    }
+
+    /// The prediction at `x`, or why there is none.
+    pub fn try_predict(&self, x: &[f64]) -> Result<Prediction, SimError> {
+        let c = self.par.build(x).map_err(SimError::Params)?;
+        self.exp.simulate(&c.params, &c.extras, c.xi, self.control)
     }
 
     /// Scores at `x`.
