@@ -295,6 +295,46 @@ fn force_driven_verbs_make_up_no_damping_and_place_a_bad_mass() {
     }
 }
 
+/// A value the device's arithmetic cannot hold is refused by name: Q15.16 holds +-32768 in
+/// steps of 2^-16 = 1.5e-5, so beta = 2e-7 and gamma = 1e-7 round to zero (they were exported
+/// as 0 and 0, a different model, with no word). `f32` holds them. (Out of range:
+/// `export_table.rs`.)
+#[test]
+fn values_the_arithmetic_cannot_hold_are_refused_by_name() {
+    let tiny = write(
+        "tiny.json",
+        &BW.replace(
+            r#""beta": 2, "gamma": -1"#,
+            r#""beta": 2e-7, "gamma": 1e-7"#,
+        ),
+    );
+    let export = |file: &str, scalar: &str| {
+        hyst(&[
+            "export",
+            file,
+            "--format",
+            "bin",
+            "--scalar",
+            scalar,
+            "--out",
+            cli::tmp("held.bin").to_str().unwrap(),
+        ])
+    };
+    let e = err(export(&tiny, "q16"));
+    assert!(
+        e.contains("tiny.json: beta = 0.0000002 rounds to 0 in q16"),
+        "{e}"
+    );
+    ok(export(&tiny, "f32"));
+    // export has no --model to point to: the file must say.
+    let bare = write("no-model.json", &BW.replace(r#""model": "bw", "#, ""));
+    let e = err(export(&bare, "f32"));
+    assert!(
+        e.contains("no-model.json: no \"model\" key") && !e.contains("--model"),
+        "{e}"
+    );
+}
+
 /// A PHM file (phm_cli.rs's asymmetric column).
 const PHM: &str = r#"{"model": "phm-torsion", "units": {"twist": "deg", "torque": "kN m"},
  "primary": {"positive": [[0.2, 100.0], [1.2, 160.0], [4.2, 172.0], [7.5, 150.0]],
@@ -391,6 +431,32 @@ fn export_names_are_not_keywords() {
     // Each language's keywords only: `fn` names a C array, `for_table` either.
     ok(export("c", "fn"));
     ok(export("rust", "for_table"));
+    // A binary table has no name: the option is refused, not ignored.
+    let e = cli::err(export("bin", "columns"));
+    assert!(e.contains("a binary table has no name"), "{e}");
+}
+
+/// NSGA-II's settings with another method are refused, not ignored (`--bits 8` with the
+/// default `auto` ran auto and said nothing).
+#[test]
+fn evolutionary_settings_need_nsga2() {
+    let data = write("column-evolution.csv", &column_record());
+    for (flag, value) in [
+        ("--population", "10"),
+        ("--generations", "5"),
+        ("--seed", "5"),
+        ("--bits", "8"),
+    ] {
+        for method in ["auto", "lsq"] {
+            let e = cli::err(hyst(&["fit", &data, "--method", method, flag, value]));
+            assert!(
+                e.contains(&format!(
+                    "{flag} is a setting of NSGA-II, which method {method}"
+                )),
+                "{e}"
+            );
+        }
+    }
 }
 
 /// `diagnose --candidates` weighs each effect once, and only effects the model lacks.

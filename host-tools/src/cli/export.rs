@@ -51,6 +51,9 @@ pub fn run(args: ExportArgs) -> Result<()> {
     if args.read.raw_displacement {
         bail!("--raw-displacement is for fitting: export runs the table along --history as given");
     }
+    if args.name.is_some() && args.format == Format::Bin {
+        bail!("--name names the Rust static or the C array: a binary table has no name (--format rust or c)");
+    }
     let src = export::read(&args.fits)?;
     for note in &src.notes {
         eprintln!("note: {note}");

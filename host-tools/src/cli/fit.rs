@@ -53,15 +53,15 @@ pub struct FitArgs {
     /// Print one JSON object instead of the text summary.
     #[arg(long)]
     pub json: bool,
-    /// NSGA-II: population size.
-    #[arg(long, default_value_t = 100)]
-    pub population: usize,
-    /// NSGA-II: generations (counting the initial population).
-    #[arg(long, default_value_t = 100)]
-    pub generations: usize,
-    /// NSGA-II: seed of the random stream (runs are reproducible).
-    #[arg(long, default_value_t = 1)]
-    pub seed: u64,
+    /// NSGA-II: population size [default: 100].
+    #[arg(long)]
+    pub population: Option<usize>,
+    /// NSGA-II: generations (counting the initial population) [default: 100].
+    #[arg(long)]
+    pub generations: Option<usize>,
+    /// NSGA-II: seed of the random stream (runs are reproducible) [default: 1].
+    #[arg(long)]
+    pub seed: Option<u64>,
     /// NSGA-II: bits per variable for the binary-coded variant the thesis
     /// describes (default: real-coded, SBX and polynomial mutation).
     #[arg(long)]
@@ -88,9 +88,9 @@ impl FitArgs {
         };
         Evolution {
             nsga2: Nsga2 {
-                population: self.population,
-                generations: self.generations,
-                seed: self.seed,
+                population: self.population.unwrap_or(100),
+                generations: self.generations.unwrap_or(100),
+                seed: self.seed.unwrap_or(1),
                 encoding,
                 ..Nsga2::default()
             },
@@ -357,6 +357,17 @@ pub fn run(args: FitArgs) -> Result<()> {
     }
     if args.polish && method != Method::Nsga2 {
         bail!("--polish refines the solution NSGA-II chose: use it with --method nsga2");
+    }
+    let evolutionary = [
+        ("--population", args.population.is_some()),
+        ("--generations", args.generations.is_some()),
+        ("--seed", args.seed.is_some()),
+        ("--bits", args.bits.is_some()),
+    ];
+    if let Some((flag, _)) = evolutionary.iter().find(|(_, given)| *given) {
+        if method != Method::Nsga2 {
+            bail!("{flag} is a setting of NSGA-II, which method {method} does not run: use it with --method nsga2");
+        }
     }
     let outcome = run::fit_with(
         &problem,

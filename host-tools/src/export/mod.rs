@@ -17,7 +17,7 @@ use hysteresis::phm::{Direction, PhmParams};
 use hysteresis::table::{
     self, BwbnTable, Header, ModelKind, PhmTable, ScalarKind, Table, TableError, TableScalar, Units,
 };
-use hysteresis::Fixed;
+use hysteresis::{Fixed, Scalar};
 use std::path::{Path, PathBuf};
 
 /// The elements of one table, in the order of the files given.
@@ -85,7 +85,12 @@ pub fn read(paths: &[PathBuf]) -> Result<Sources> {
             (f.units, ModelKind::Phm)
         } else {
             let f = ParamFile::parse(path, &text)?;
-            let spec = f.spec(None)?;
+            let spec = f.model.ok_or_else(|| {
+                anyhow!(
+                    "{}: no \"model\" key: a table needs to know the model (\"model\": \"bw\", \"bwbn\", ...)",
+                    path.display()
+                )
+            })?;
             if spec.custom != 0 {
                 bail!(
                     "{}: model {spec} has an effect defined outside the library; device tables hold the core's effects only",
@@ -185,10 +190,56 @@ pub fn read(paths: &[PathBuf]) -> Result<Sources> {
     })
 }
 
+/// Why `x` cannot be held in `scalar`, if it cannot: beyond its range, or
+/// not zero but rounded to zero (which would switch a term of the model off).
+fn unheld(scalar: ScalarKind, x: f64) -> Option<String> {
+    fn held<S: Scalar>(x: f64) -> f64 {
+        S::from_f64(x).to_f64()
+    }
+    let (h, step) = match scalar {
+        ScalarKind::F32 => (held::<f32>(x), f64::from(f32::from_bits(1))),
+        ScalarKind::Q16 => (held::<Fixed>(x), 1.0 / 65536.0),
+        // f64 holds every value a parameter file can state.
+        _ => return None,
+    };
+    if !h.is_finite() {
+        Some(format!("is beyond the range of {}", scalar.name()))
+    } else if x != 0.0 && h == 0.0 {
+        Some(format!(
+            "rounds to 0 in {} (its smallest step is {step:.2e})",
+            scalar.name()
+        ))
+    } else {
+        None
+    }
+}
+
 /// Encodes `src` in `scalar` and loads the result back with the device's
 /// loader; a value the arithmetic cannot hold (beyond ±32768 in Q15.16, a
 /// rate that rounds to zero) is refused here, naming the file.
 pub fn encode(src: &Sources, scalar: ScalarKind) -> Result<Vec<u8>> {
+    if let Elements::Bwbn(v) = &src.elements {
+        for (p, file) in v.iter().zip(&src.files) {
+            let mut refused = None;
+            p.for_each(|spec, x| {
+                if refused.is_none() {
+                    refused = unheld(scalar, x).map(|why| format!("{} = {x} {why}", spec.name));
+                }
+            });
+            if let Some(why) = refused {
+                let wider = if scalar == ScalarKind::Q16 {
+                    "f32 or f64"
+                } else {
+                    "f64"
+                };
+                bail!(
+                    "{}: {why}; export in a wider arithmetic (--scalar {wider}), or state the \
+                     parameters in units that bring it into range",
+                    file.display()
+                );
+            }
+        }
+    }
     let n = src.elements.len();
     let mut out = match &src.elements {
         Elements::Bwbn(v) => vec![0u8; table::bwbn_len(v[0].effect_set(), scalar, n)],
