@@ -341,6 +341,16 @@ const PHM: &str = r#"{"model": "phm-torsion", "units": {"twist": "deg", "torque"
              "negative": [[0.25, 110.0], [1.3, 158.0], [4.3, 166.0], [7.5, 140.0]]},
  "coefficients": {"eq2b_b": 0.38, "eq3b_b": 0.12, "eq4_a": 0.65, "eq5b_b": 0.85, "eq6_c": 0.95}}"#;
 
+/// A parameter file that does not parse is reported as such, also with `--json` (which is
+/// for PHM files): a truncated PHM file was answered "--json is for --model phm-torsion".
+#[test]
+fn a_truncated_parameter_file_is_reported_before_the_options() {
+    let cut = write("cut-phm.json", &PHM[..60]);
+    let twist = write("cut-twist.csv", "twist (deg)\n0\n1\n0\n");
+    let e = err(hyst(&["simulate", &twist, "--params", &cut, "--json"]));
+    assert!(e.contains("cut-phm.json:") && !e.contains("--json is for"), "{e}");
+}
+
 /// `export --history` drives the elements with the history's quantity: a twist history for
 /// Bouc-Wen elements, or millimetres for the PHM, is refused (degrees were read as mm), and the
 /// reader's notes are printed as by every other verb.

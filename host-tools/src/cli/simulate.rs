@@ -115,10 +115,10 @@ pub fn run(args: SimulateArgs) -> Result<()> {
         (Some(ModelArg::Bwbn(spec)), false) => Some(spec),
         (None, false) => None,
     };
+    let file = ParamFile::read(&args.params)?;
     if args.json {
         bail!("--json is for --model {PHM_MODEL}");
     }
-    let file = ParamFile::read(&args.params)?;
     let spec = file.spec(spec)?;
     let mut opts = args.read.options();
     // A mass, or a fit of the oscillator (its file carries `m`), means the

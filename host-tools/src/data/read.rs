@@ -161,9 +161,30 @@ impl Format {
 pub fn read(path: impl AsRef<Path>, options: &ReadOptions) -> Result<Record, DataError> {
     let path = path.as_ref();
     let format = Format::of(path)?;
-    let text = std::fs::read_to_string(path)
+    let bytes = std::fs::read(path)
         .map_err(|e| DataError::file(path, format!("cannot read the file: {e}")))?;
+    let text = String::from_utf8(bytes).map_err(|e| not_utf8(path, &e))?;
     read_str(path, &text, format, options)
+}
+
+/// Where the text stops being UTF-8: the line and column (in characters) of
+/// the first byte that is not, and the byte.
+fn not_utf8(path: &Path, e: &std::string::FromUtf8Error) -> DataError {
+    let bytes = e.as_bytes();
+    let good = e.utf8_error().valid_up_to();
+    // The prefix is valid UTF-8 by the error's own account.
+    let before = std::str::from_utf8(&bytes[..good]).unwrap_or_default();
+    let line = before.matches('\n').count() + 1;
+    let column = before.rsplit('\n').next().map_or(0, |l| l.chars().count()) + 1;
+    DataError::at(
+        path,
+        line,
+        column,
+        format!(
+            "byte {:#04x} is not UTF-8: save the file as UTF-8 (a Latin-1 '°' or 'µ' is one such byte)",
+            bytes.get(good).copied().unwrap_or_default()
+        ),
+    )
 }
 
 /// Reads a record from text already in memory; `name` is used in messages.

@@ -220,6 +220,22 @@ fn malformed_csv_table() {
     }
 }
 
+/// A byte that is not UTF-8 (a Latin-1 degree sign in a comment) is placed at its line and
+/// column; the message used to name the file alone.
+#[test]
+fn a_byte_that_is_not_utf8_is_placed() {
+    let path = std::env::temp_dir().join(format!("hyst-latin1-{}.csv", std::process::id()));
+    std::fs::write(&path, b"u (mm),f (kN)\n# at 20 \xb0C\n0,0\n1,2\n").unwrap();
+    let e = read(&path, &ReadOptions::default())
+        .unwrap_err()
+        .to_string();
+    std::fs::remove_file(&path).unwrap();
+    assert!(
+        e.ends_with(".csv:2:9: byte 0xb0 is not UTF-8: save the file as UTF-8 (a Latin-1 '°' or 'µ' is one such byte)"),
+        "{e}"
+    );
+}
+
 #[test]
 fn unreadable_and_unknown_files() {
     let e = read("no/such/file.csv", &ReadOptions::default()).unwrap_err();
