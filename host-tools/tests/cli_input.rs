@@ -348,7 +348,10 @@ fn a_truncated_parameter_file_is_reported_before_the_options() {
     let cut = write("cut-phm.json", &PHM[..60]);
     let twist = write("cut-twist.csv", "twist (deg)\n0\n1\n0\n");
     let e = err(hyst(&["simulate", &twist, "--params", &cut, "--json"]));
-    assert!(e.contains("cut-phm.json:") && !e.contains("--json is for"), "{e}");
+    assert!(
+        e.contains("cut-phm.json:") && !e.contains("--json is for"),
+        "{e}"
+    );
 }
 
 /// `export --history` drives the elements with the history's quantity: a twist history for

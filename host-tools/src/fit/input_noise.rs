@@ -27,7 +27,9 @@
 //!   wander.
 //!
 //! This is done only when at least half of the measured reversals are such
-//! noise: a record whose reversals are the test's is left as it is.
+//! noise, and when the path made monotone still moves by more than the
+//! threshold: a record whose reversals are the test's, or one so coarse that
+//! its corners read as noise, is left as it is.
 
 use super::regression::regress;
 use crate::data::{Cycles, Threshold};
@@ -346,6 +348,18 @@ pub fn monotone(u: &[f64]) -> Option<(Vec<f64>, Monotone)> {
             *o = sign * (sign * f).max(floor).min(ceiling);
         }
     }
+    // A path that keeps less motion than the threshold was not resolved:
+    // its third differences saw the corners of a coarse path, not noise (a
+    // triangle 0, 1, 2, 1, 0, -1, -2, -1, 0 reads as noise of 0.66, and
+    // made monotone it stood still at 0).
+    let (lo, hi) = out
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), v| {
+            (l.min(*v), h.max(*v))
+        });
+    if hi - lo < threshold {
+        return None;
+    }
     let largest_change = u
         .iter()
         .zip(&out)
@@ -593,5 +607,10 @@ mod tests {
         assert_eq!(monotone(&path), None);
         let coarse = noisy(&triangles(&[5.0, 10.0, 20.0], 16), 0.01, 5);
         assert_eq!(monotone(&coarse), None);
+        // A cycle in 1 mm steps: its third differences (2, 2, 0, 0, 2, 2) read as noise of
+        // 0.66 mm, which would leave no reversal of the test and a path standing at 0.
+        let cycle = [0.0, 1.0, 2.0, 1.0, 0.0, -1.0, -2.0, -1.0, 0.0];
+        assert!((noise(&cycle).unwrap() - 2.0 / 0.6745 / 20f64.sqrt()).abs() < 1e-12);
+        assert_eq!(monotone(&cycle), None);
     }
 }
