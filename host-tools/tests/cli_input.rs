@@ -335,6 +335,20 @@ fn values_the_arithmetic_cannot_hold_are_refused_by_name() {
     );
 }
 
+/// A record the model cannot be run on from any start is an error naming the record and
+/// the failing sample (it said only "check the fixed parameters and bounds", with nothing
+/// fixed): here a displacement-driven column read as force-driven by `--mass`.
+#[test]
+fn a_fit_that_cannot_start_names_the_record_and_the_sample() {
+    let data = write("column-as-forced.csv", &column_record());
+    let e = err(hyst(&["fit", &data, "--mass", "500", "--sample-rate", "1"]));
+    assert!(
+        e.contains("column-as-forced.csv: the model could not be simulated from any of its starts (at the first: step to sample")
+            && !e.contains("fixed"),
+        "{e}"
+    );
+}
+
 /// A PHM file (phm_cli.rs's asymmetric column).
 const PHM: &str = r#"{"model": "phm-torsion", "units": {"twist": "deg", "torque": "kN m"},
  "primary": {"positive": [[0.2, 100.0], [1.2, 160.0], [4.2, 172.0], [7.5, 150.0]],

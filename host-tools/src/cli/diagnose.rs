@@ -127,7 +127,8 @@ pub fn initial_fit(common: &Common, params: Option<&Path>, bar: &Bar) -> Result<
             let x = given_point(&file, &problem, &common.data)?;
             run::evaluate_at(&problem, &x, "given")?
         }
-        None => run::fit(&problem, Method::Auto, &problem.par.default_start(), bar)?,
+        None => run::fit(&problem, Method::Auto, &problem.par.default_start(), bar)
+            .with_context(|| common.data.display().to_string())?,
     };
     Ok(Initial {
         problem,

@@ -375,7 +375,8 @@ pub fn run(args: FitArgs) -> Result<()> {
         &problem.par.default_start(),
         &args.evolution(),
         &bar,
-    )?;
+    )
+    .with_context(|| args.data.display().to_string())?;
     bar.finish();
     let seconds = t0.elapsed().as_secs_f64();
     let file = fit_json(&problem, &outcome, &args.data, seconds, monotone.as_ref())?;

@@ -296,7 +296,21 @@ pub fn fit_with(
         }
     };
     let sol = solution.ok_or_else(|| {
-        anyhow!("the model could not be simulated from the starting point; check the fixed parameters and bounds")
+        let from = if method == Method::Auto {
+            "any of its starts"
+        } else {
+            "its starting point"
+        };
+        let why = match problem.try_predict(x0) {
+            Err(e) => format!(" (at the first: {e})"),
+            Ok(_) => String::new(),
+        };
+        let fixed = if problem.par.fixed.is_empty() {
+            ""
+        } else {
+            "; check the fixed parameters"
+        };
+        anyhow!("the model could not be simulated from {from}{why}{fixed}")
     })?;
     Ok(Outcome {
         screening,
