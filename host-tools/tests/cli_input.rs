@@ -85,6 +85,24 @@ fn a_closed_pipe_ends_quietly() {
     }
 }
 
+/// `hyst params` lines its columns up whatever the names: the descriptions start at one
+/// character column on every line (asymmetry's long names and equations pushed them out).
+#[test]
+fn the_parameter_table_is_aligned() {
+    let out = ok(hyst(&["params", "--model", "bwbn+asymmetry"]));
+    let text = String::from_utf8(out.stdout).unwrap();
+    assert_eq!(text.lines().count(), 20, "{text}");
+    // Each line's description follows the off value and two spaces.
+    let first = text.lines().next().unwrap();
+    let column = first[..first.find("description").unwrap()].chars().count();
+    for line in text.lines() {
+        let before: String = line.chars().take(column).collect();
+        assert!(before.ends_with("  "), "{line:?}");
+        let rest: String = line.chars().skip(column).collect();
+        assert!(!rest.starts_with(' '), "{line:?}");
+    }
+}
+
 /// A key given twice in a JSON file is refused with its place: `serde_json` alone would keep the
 /// last one, and `k0` would silently be 60.
 #[test]
@@ -131,6 +149,12 @@ fn fixed_values_are_checked_once_and_by_the_models_rules() {
     let e = cli::err(hyst(&["diagnose", &data, "--fix", "n=-1"]));
     assert!(
         e.contains("cannot fix `n` to -1: n must be greater than zero"),
+        "{e}"
+    );
+    // 1e400 parses as infinity: refused as what was written, not as "to inf".
+    let e = fit(&["beta=1e400"]);
+    assert!(
+        e.contains("`beta=1e400`: the value is not a finite number"),
         "{e}"
     );
 }

@@ -109,6 +109,9 @@ pub fn parse_fix(s: &str) -> Result<(String, f64), String> {
         .trim()
         .parse()
         .map_err(|_| format!("`{v}` in `{s}` is not a number"))?;
+    if !v.is_finite() {
+        return Err(format!("`{s}`: the value is not a finite number"));
+    }
     Ok((n.trim().to_string(), v))
 }
 

@@ -12,24 +12,47 @@ pub struct ParamsArgs {
     pub model: ModelSpec,
 }
 
-/// Prints the parameter table.
+/// Prints the parameter table, each column as wide as its widest entry
+/// (symbols such as `ν₀` are counted in characters, not bytes).
 pub fn run(args: ParamsArgs) -> anyhow::Result<()> {
-    outln!(
-        "{:<10} {:<6} {:<5} {:>6}  description",
-        "name",
-        "symbol",
-        "eq.",
-        "off"
-    );
-    for s in args.model.params() {
-        outln!(
-            "{:<10} {:<6} {:<5} {:>6}  {}",
-            s.name,
-            s.symbol,
-            s.equation,
-            s.off,
-            s.doc
-        );
+    let params = args.model.params();
+    let rows: Vec<[String; 4]> = params
+        .iter()
+        .map(|s| {
+            [
+                s.name.to_string(),
+                s.symbol.to_string(),
+                s.equation.to_string(),
+                s.off.to_string(),
+            ]
+        })
+        .collect();
+    let header = ["name", "symbol", "eq.", "off"].map(str::to_string);
+    let width = |c: usize| {
+        rows.iter()
+            .chain([&header])
+            .map(|r| r[c].chars().count())
+            .max()
+            .unwrap_or(0)
+    };
+    let widths = [width(0), width(1), width(2), width(3)];
+    let line = |r: &[String; 4], doc: &str| {
+        let pad = |c: usize| " ".repeat(widths[c] - r[c].chars().count());
+        format!(
+            "{}{}  {}{}  {}{}  {}{}  {doc}",
+            r[0],
+            pad(0),
+            r[1],
+            pad(1),
+            r[2],
+            pad(2),
+            pad(3),
+            r[3]
+        )
+    };
+    outln!("{}", line(&header, "description"));
+    for (r, s) in rows.iter().zip(&params) {
+        outln!("{}", line(r, s.doc));
     }
     Ok(())
 }

@@ -47,9 +47,14 @@ pub struct Identifiability {
 impl Identifiability {
     /// One paragraph in plain words.
     pub fn summary(&self) -> String {
+        let condition = if self.condition.is_finite() {
+            format!("{:.3e}", self.condition)
+        } else {
+            "infinite".to_string()
+        };
         let mut s = format!(
-            "Jacobian rank {} of {} parameters, condition number {:.3e}.",
-            self.rank, self.parameters, self.condition
+            "Jacobian rank {} of {} parameters, condition number {condition}.",
+            self.rank, self.parameters
         );
         if self.undetermined.is_empty() {
             s.push_str(" Every parameter is determined by the data.");
@@ -64,11 +69,18 @@ impl Identifiability {
                     .iter()
                     .map(|(n, c)| format!("{c:+.2} {n}"))
                     .collect();
-                s.push_str(&format!(
-                    " The combination [{}] is {:.1e} times less visible in the output than the best-determined one.",
-                    names.join(", "),
-                    w.relative_singular_value
-                ));
+                if w.relative_singular_value > 0.0 {
+                    s.push_str(&format!(
+                        " The combination [{}] is {:.1e} times less visible in the output than the best-determined one.",
+                        names.join(", "),
+                        w.relative_singular_value
+                    ));
+                } else {
+                    s.push_str(&format!(
+                        " The combination [{}] does not change the output at all.",
+                        names.join(", ")
+                    ));
+                }
             }
             s.push_str(" Fix some of them (--fix name=value) or add data that exercises them.");
         }
@@ -190,7 +202,13 @@ pub fn analyse(
     Identifiability {
         parameters: p,
         rank,
-        condition: smax / smin.max(f64::MIN_POSITIVE),
+        // A zero singular value (a parameter the output does not depend on)
+        // makes the condition infinite (`null` in JSON).
+        condition: if smin > 0.0 {
+            smax / smin
+        } else {
+            f64::INFINITY
+        },
         relative_std,
         correlated,
         weak,
@@ -220,6 +238,23 @@ mod tests {
             "{w:?}"
         );
         assert!(id.summary().contains("cannot determine a, b"));
+    }
+
+    /// A parameter the output does not depend on at all (alpha fixed at 1 leaves the
+    /// hysteretic parameters without effect): the condition is infinite, and the summary says
+    /// so in words, not as 3.9e307 (the largest singular value over the smallest positive
+    /// float) and "0.0e0 times less visible".
+    #[test]
+    fn a_parameter_without_effect_is_reported_in_words() {
+        let jac = DMatrix::from_fn(10, 2, |i, j| if j == 0 { i as f64 } else { 0.0 });
+        let id = analyse(&jac, &["k0", "beta"], &[1.0, 1.0], 1e-6, 10);
+        assert_eq!(id.condition, f64::INFINITY);
+        let s = id.summary();
+        assert!(s.contains("condition number infinite"), "{s}");
+        assert!(
+            s.contains("[+1.00 beta] does not change the output at all"),
+            "{s}"
+        );
     }
 
     #[test]
