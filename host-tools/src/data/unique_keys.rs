@@ -28,7 +28,9 @@ pub fn parse_file(path: &Path, text: &str) -> anyhow::Result<Value> {
             "{}:{}:{}: not valid JSON: {e}",
             path.display(),
             e.line(),
-            e.column()
+            // serde_json counts an error before the first character (an
+            // empty file) as column 0; columns are counted from 1.
+            e.column().max(1)
         )
     })
 }
@@ -119,5 +121,20 @@ mod tests {
         let e = parse(r#"{"data": {"disp": [1], "disp": [2]}}"#).unwrap_err();
         assert!(e.to_string().starts_with("key 'disp' given twice"), "{e}");
         assert!(parse(r#"[{"a": 1}, {"a": 2}]"#).is_ok());
+    }
+
+    /// Errors are placed at a line and a column counted from 1, also in an empty file.
+    #[test]
+    fn an_empty_file_is_placed_at_column_1() {
+        let e = parse_file(Path::new("empty.json"), "").unwrap_err();
+        assert!(
+            e.to_string().starts_with("empty.json:1:1: not valid JSON"),
+            "{e}"
+        );
+        let e = parse_file(Path::new("cut.json"), "{\"a\":").unwrap_err();
+        assert!(
+            e.to_string().starts_with("cut.json:1:5: not valid JSON"),
+            "{e}"
+        );
     }
 }
