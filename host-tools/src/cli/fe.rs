@@ -195,6 +195,7 @@ fn write_backbone(
         "materials": summary.materials,
         "element_size_mm": summary.element_size_mm,
         "interrupted": summary.interrupted,
+        "stopped_after_peak": summary.stopped_after_peak,
         "quasi_static": summary.quasi_static,
         "quasi_static_to_peak": summary.checks_to_peak.as_ref().map(|c| c.quasi_static),
         "initial_stiffness_kNm_per_deg": primary.initial_stiffness,
@@ -246,12 +247,17 @@ fn print_summary(s: &Summary) -> std::io::Result<()> {
         s.added_mass_percent
     );
     outln!(
-        "  {} steps to t = {:.4e} s on {} threads in {:.1} s ({:.0} ns per element-step)",
+        "  {} steps to t = {:.4e} s on {} threads in {:.1} s ({:.0} ns per element-step){}",
         s.steps,
         s.time_s,
         s.threads,
         s.wall_s,
-        s.ns_per_element_step
+        s.ns_per_element_step,
+        if s.stopped_after_peak {
+            "; stopped there: the torque fell below analysis.stop_below_peak of its peak"
+        } else {
+            ""
+        }
     );
     match s.initial_stiffness {
         Some(k) => outln!(

@@ -50,6 +50,9 @@ pub struct Summary {
     pub materials: &'static str,
     /// Whether the run was interrupted before the end of the loading.
     pub interrupted: bool,
+    /// Whether the run ended before the end of the loading because the
+    /// torque fell below `analysis.stop_below_peak` of its peak.
+    pub stopped_after_peak: bool,
     /// Hexahedra.
     pub elements: usize,
     /// Nodes.
@@ -150,6 +153,29 @@ pub struct PeakChecks {
     pub quasi_static: bool,
     /// The checks that failed up to the peak.
     pub failures: Vec<String>,
+}
+
+/// Whether the last sample's torque lies below `fraction` of the largest
+/// torque so far, and the run cracked ([`output::cracking`]) before that
+/// largest torque: the rule of `analysis.stop_below_peak`. The cracking
+/// condition keeps the noise of the start of a run, when the largest torque
+/// is still tiny, from ending it; a fraction of 0 never holds.
+fn fallen_below_peak(samples: &[Sample], fraction: f64) -> bool {
+    let Some(last) = samples.last() else {
+        return false;
+    };
+    let (peak_at, peak) = samples
+        .iter()
+        .enumerate()
+        .fold((0, 0.0f64), |(i, m), (j, x)| {
+            if x.torque.abs() > m {
+                (j, x.torque.abs())
+            } else {
+                (i, m)
+            }
+        });
+    last.torque.abs() < fraction * peak
+        && output::cracking(samples).is_some_and(|(_, c)| c < peak_at)
 }
 
 /// The bar sets whose largest strains `rebar_strains.csv` reports, in its
@@ -258,6 +284,7 @@ pub fn run<M: SolidMaterial, B: BarMaterial>(
     let report = (steps / 500).max(1);
     let start = Instant::now();
     let mut interrupted = false;
+    let mut stopped_after_peak = false;
     while s.steps < steps {
         if stop.load(Ordering::Relaxed) {
             interrupted = true;
@@ -277,6 +304,12 @@ pub fn run<M: SolidMaterial, B: BarMaterial>(
         trace.push(s.t, s.energy);
         if s.steps % every == 0 || s.steps == steps {
             write_row(&s, &mut files, &mut rec)?;
+            if let Some(f) = spec.analysis.stop_below_peak {
+                if fallen_below_peak(&rec.samples, f) {
+                    stopped_after_peak = true;
+                    break;
+                }
+            }
         }
         if vtk_every.is_some_and(|v| s.steps % v == 0) {
             write_vtk(&s, &files, &mut outputs)?;
@@ -389,6 +422,7 @@ pub fn run<M: SolidMaterial, B: BarMaterial>(
         specimen: spec.name.clone(),
         materials,
         interrupted,
+        stopped_after_peak,
         elements: m.elements(),
         nodes: m.mesh.nodes.len(),
         trusses: m.embedding.trusses.len(),
@@ -549,6 +583,103 @@ transverse_ratio_pct = 0.16
         let exact = (1.0 - 0.1f64.powf(0.25)) * 150.0;
         assert!((t - exact).abs() < 12.5, "{t} vs {exact}");
         std::fs::remove_dir_all(&dir).ok();
+    }
+
+    /// `stop_below_peak`'s rule, sample by sample, on a curve of the shape
+    /// of the specimens' (linear to cracking at 0.01 rad, hardening to a
+    /// peak of 150 at 0.06 rad, then falling) after a start whose small
+    /// torques rise and fall before any twist: it holds from the first
+    /// sample below half the peak on, and at no sample before.
+    #[test]
+    fn the_stop_rule_holds_from_the_first_sample_below_the_fraction_after_cracking() {
+        let torque = |th: f64| {
+            if th <= 0.01 {
+                1e4 * th
+            } else if th <= 0.06 {
+                100.0 + 1e3 * (th - 0.01)
+            } else {
+                150.0 - 1e4 * (th - 0.06)
+            }
+        };
+        let mut samples = vec![
+            Sample::on_curve(0.0, 0.0),
+            Sample::on_curve(0.0, 2.0),
+            Sample::on_curve(0.0, 0.5),
+        ];
+        assert!(!fallen_below_peak(&samples, 0.5), "noise before the twist");
+        let mut first = None;
+        for i in 1..=80 {
+            let th = 0.001 * i as f64;
+            samples.push(Sample::on_curve(th, torque(th)));
+            let expected = th > 0.06 && torque(th) < 75.0;
+            assert_eq!(fallen_below_peak(&samples, 0.5), expected, "at {th} rad");
+            if expected && first.is_none() {
+                first = Some(th);
+            }
+        }
+        assert_eq!(first, Some(0.001 * 68.0));
+    }
+
+    /// A run that unloads without cracking (an elastic curve going back
+    /// down its loading line) is never stopped: the rule is for a fall
+    /// after a peak, not for unloading.
+    #[test]
+    fn the_stop_rule_leaves_an_uncracked_run_alone() {
+        let mut samples = vec![Sample::on_curve(0.0, 0.0)];
+        for i in (1..=20).chain((1..20).rev()) {
+            let th = 0.001 * i as f64;
+            samples.push(Sample::on_curve(th, 1e4 * th));
+            assert!(!fallen_below_peak(&samples, 0.5), "at {th} rad");
+        }
+    }
+
+    /// A run stopped by `analysis.stop_below_peak` is the whole run cut
+    /// short: an explicit step depends only on the steps before it, so
+    /// every sample up to the stop is the whole run's, bit for bit. It ends
+    /// at the first sample below the fraction of the peak and says why.
+    #[test]
+    fn a_run_stopped_below_its_peak_is_the_whole_run_cut_short() {
+        let p = Path::new(env!("CARGO_MANIFEST_DIR")).join("../specimens/tp-92.toml");
+        let coarse = |stop: &str| {
+            [
+                Override::set("analysis.threads", "1"),
+                Override::set("analysis.element_size_mm", "50.0"),
+                Override::set("analysis.stop_below_peak", stop),
+            ]
+        };
+        let go = |sets: &[Override]| {
+            let spec = Specimen::load_with(&p, sets).expect("specimen");
+            let s = run(
+                &spec,
+                "damaged-plasticity",
+                spec.concrete_damaged(),
+                spec.steel_yielding(),
+                &RunOptions::default(),
+                &AtomicBool::new(false),
+                |_| {},
+            )
+            .expect("run");
+            (s, spec.end_time())
+        };
+        let (whole, end) = go(&coarse("0"));
+        let (cut, _) = go(&coarse("0.5"));
+        assert!(!whole.stopped_after_peak && whole.time_s >= end);
+        assert!(cut.stopped_after_peak && !cut.interrupted && cut.time_s < end);
+        let n = cut.samples.len();
+        assert!(n < whole.samples.len(), "{n} samples");
+        assert!(cut.samples[..] == whole.samples[..n]);
+        assert_eq!(cut.cracking_torque, whole.cracking_torque);
+        assert_eq!(cut.peak_torque, whole.peak_torque);
+        let peak = cut.peak_torque.expect("a peak") * 1e3;
+        let at = cut
+            .samples
+            .iter()
+            .position(|x| x.torque.abs() * 1e-3 == cut.max_torque);
+        let after = &cut.samples[at.expect("the peak sample")..];
+        assert!(after[after.len() - 1].torque.abs() < 0.5 * peak);
+        assert!(after[..after.len() - 1]
+            .iter()
+            .all(|x| x.torque.abs() >= 0.5 * peak));
     }
 
     #[test]

@@ -12,7 +12,8 @@
 //! [transverse]   # kind = "spiral" | "hoops", bar_diameter_mm, spacing_mm, yield_mpa
 //! [steel]        # elastic_modulus_mpa, density_kg_m3
 //! [loading]      # axial_force_kn, axial_ramp_s, twist = [[s, rad], ...], interpolation
-//! [analysis]     # element_size_mm, hourglass_scale, bulk_viscosity, dt_safety, mass_scaling_dt_s, threads
+//! [analysis]     # element_size_mm, hourglass_scale, bulk_viscosity, dt_safety, mass_scaling_dt_s,
+//!                # stop_below_peak, threads
 //! [output]       # samples, vtk_every_s, [[output.rebar_station]]
 //! [reference]    # Table 1.1 ratios, checked against the bar layout;
 //!                # [reference.table_2_1]: the torques a run is compared with
@@ -184,6 +185,9 @@ pub struct AnalysisSpec {
     pub dt_safety: f64,
     /// Mass-scaling target step, s.
     pub mass_scaling_dt_s: Option<f64>,
+    /// End the run once the torque, after its peak, has fallen below this
+    /// fraction of the peak (none or 0: run the whole twist history).
+    pub stop_below_peak: Option<f64>,
     /// Worker threads (default 2).
     pub threads: Option<usize>,
 }
@@ -908,6 +912,15 @@ impl Specimen {
         if let Some(m) = a.mass_scaling_dt_s {
             pos(m, "analysis.mass_scaling_dt_s", "a target time step in s")?;
         }
+        if let Some(f) = a.stop_below_peak {
+            if !(0.0..1.0).contains(&f) {
+                return Err((
+                    "analysis.stop_below_peak".into(),
+                    "a fraction of the peak torque in [0, 1) (0 runs the whole twist history)"
+                        .into(),
+                ));
+            }
+        }
         if let Some(t) = a.threads {
             let (most, hardware) = thread_limit();
             if !(1..=most).contains(&t) {
@@ -1387,6 +1400,11 @@ mod tests {
                 "element_size_mm = 25.0".to_string(),
                 "element_size_mm = 0.5".to_string(),
                 "a mesh of at most 5000000 elements, found 0.5 mm, which gives about 1.73e9",
+            ),
+            (
+                "stop_below_peak = 0.5".to_string(),
+                "stop_below_peak = 1.0".to_string(),
+                "a fraction of the peak torque in [0, 1)",
             ),
             (
                 "transverse_ratio_pct = 0.79".to_string(),
