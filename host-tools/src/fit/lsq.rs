@@ -305,9 +305,8 @@ where
                 }
                 None => (f.residuals(&xn), None),
             };
-            match trial {
-                Some(rn) if gain_accepted(c, cost(&rn), predicted) => {
-                    let cn = cost(&rn);
+            match trial.map(|rn| (cost(&rn), rn)) {
+                Some((cn, rn)) if gain_accepted(c, cn, predicted) => {
                     let small = c - cn < opts.f_tol * c;
                     // Exact where it can be had at this point, else
                     // differenced.
