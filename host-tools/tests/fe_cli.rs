@@ -80,6 +80,11 @@ fn fe_backbone_feeds_the_phm_and_the_run_writes_section_rebar_and_damage() {
     );
     assert!(c[0] < y[0] && y[0] < p[0] && p[0] < d[0], "{curve}");
     assert!(c[1] < y[1] && y[1] < p[1] && d[1] < p[1], "{curve}");
+    // The specimen file ends the run below half its peak, so the last
+    // point of the curve, deterioration, is the first sample below it.
+    assert_eq!(summary["stop_below_peak"].as_f64(), Some(0.5));
+    assert_eq!(summary["stopped_after_peak"].as_bool(), Some(true));
+    assert!(d[1] < 0.5 * p[1], "{curve}");
     // The peak is the summary's (kN m), the initial stiffness its
     // initial stiffness (kN m/rad there, per degree here).
     let peak = summary["peak_torque"].as_f64().unwrap();

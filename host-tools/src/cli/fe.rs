@@ -253,10 +253,11 @@ fn print_summary(s: &Summary) -> std::io::Result<()> {
         s.threads,
         s.wall_s,
         s.ns_per_element_step,
-        if s.stopped_after_peak {
-            "; stopped there: the torque fell below analysis.stop_below_peak of its peak"
-        } else {
-            ""
+        match s.stop_below_peak {
+            Some(f) if s.stopped_after_peak => format!(
+                "; ended there: the torque fell below {f} of its peak (analysis.stop_below_peak)"
+            ),
+            _ => String::new(),
         }
     );
     match s.initial_stiffness {

@@ -53,6 +53,9 @@ pub struct Summary {
     /// Whether the run ended before the end of the loading because the
     /// torque fell below `analysis.stop_below_peak` of its peak.
     pub stopped_after_peak: bool,
+    /// The fraction of `analysis.stop_below_peak` (none: the whole twist
+    /// history was asked for).
+    pub stop_below_peak: Option<f64>,
     /// Hexahedra.
     pub elements: usize,
     /// Nodes.
@@ -423,6 +426,7 @@ pub fn run<M: SolidMaterial, B: BarMaterial>(
         materials,
         interrupted,
         stopped_after_peak,
+        stop_below_peak: spec.analysis.stop_below_peak,
         elements: m.elements(),
         nodes: m.mesh.nodes.len(),
         trusses: m.embedding.trusses.len(),
@@ -665,6 +669,10 @@ transverse_ratio_pct = 0.16
         let (cut, _) = go(&coarse("0.5"));
         assert!(!whole.stopped_after_peak && whole.time_s >= end);
         assert!(cut.stopped_after_peak && !cut.interrupted && cut.time_s < end);
+        assert_eq!(
+            (whole.stop_below_peak, cut.stop_below_peak),
+            (Some(0.0), Some(0.5))
+        );
         let n = cut.samples.len();
         assert!(n < whole.samples.len(), "{n} samples");
         assert!(cut.samples[..] == whole.samples[..n]);
