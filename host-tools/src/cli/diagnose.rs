@@ -124,7 +124,7 @@ pub fn initial_fit(common: &Common, params: Option<&Path>, bar: &Bar) -> Result<
     let outcome = match file {
         Some(file) => {
             file.spec(Some(common.model))?;
-            let x = given_point(&file, &problem, &common.data)?;
+            let (x, _) = given_point(&file, &problem, &common.data)?;
             run::evaluate_at(&problem, &x, "given")?
         }
         None => run::fit(&problem, Method::Auto, &problem.par.default_start(), bar)

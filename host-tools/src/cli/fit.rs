@@ -3,7 +3,7 @@
 use super::columns::ReadArgs;
 use super::{ForcingArgs, ModelArg};
 use crate::data;
-use crate::fit::experiment::{Between, Drive, Experiment, SimError};
+use crate::fit::experiment::{Between, Drive, Experiment, Prediction, SimError};
 use crate::fit::input_noise::{self, Monotone};
 use crate::fit::nsga2::{BinaryCrossover, Encoding, Nsga2};
 use crate::fit::objectives::Scores;
@@ -172,11 +172,15 @@ pub fn mass_of(given: Option<f64>, file: Option<&ParamFile>) -> Result<Option<f6
 }
 
 /// The values of the parameter file `file` as a point of `problem` (the
-/// record `data` with the file's model), after checking that the model can
-/// be simulated there: a rejected value names its place in the file, a
-/// failed step its sample. A force-driven fit needs the file's `xi` unless
-/// it is fixed: no damping is made up.
-pub fn given_point(file: &ParamFile, problem: &Problem, data: &Path) -> Result<Vec<f64>> {
+/// record `data` with the file's model) and the model's prediction there,
+/// which checks that it can be simulated: a rejected value names its place
+/// in the file, a failed step its sample. A force-driven fit needs the
+/// file's `xi` unless it is fixed: no damping is made up.
+pub fn given_point(
+    file: &ParamFile,
+    problem: &Problem,
+    data: &Path,
+) -> Result<(Vec<f64>, Prediction)> {
     file.build(problem.par.spec, problem.par.dynamic)?;
     if problem.par.names().contains(&"xi") && !file.values.contains_key("xi") {
         bail!(
@@ -187,7 +191,7 @@ pub fn given_point(file: &ParamFile, problem: &Problem, data: &Path) -> Result<V
     let values: BTreeMap<&str, f64> = file.values.iter().map(|(k, v)| (k.as_str(), *v)).collect();
     let x = problem.par.normalise(&values);
     match problem.try_predict(&x) {
-        Ok(_) => Ok(x),
+        Ok(p) => Ok((x, p)),
         Err(SimError::Params(e)) => bail!("{}: {e}", file.at(&[e.field])),
         Err(e @ SimError::Step(..)) => bail!(
             "{}: the parameters of {} cannot be simulated on this record: {e}",

@@ -50,8 +50,8 @@ pub fn run(args: SensitivityArgs) -> Result<()> {
     let mass = mass_of(args.mass, Some(&file))?;
     let exp = load(&args.data, &args.read, mass, forcing)?;
     let problem = Problem::new(spec, exp, &[]).with_context(|| args.data.display().to_string())?;
-    let x = given_point(&file, &problem, &args.data)?;
-    let sweeps = sensitivity::analyse(&problem, &x, args.levels)?;
+    let (x, nominal) = given_point(&file, &problem, &args.data)?;
+    let sweeps = sensitivity::analyse(&problem, &x, &nominal.output, args.levels)?;
     if let Some(path) = &args.plot {
         let change: Vec<f64> = sweeps
             .first()

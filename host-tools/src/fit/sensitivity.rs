@@ -5,7 +5,7 @@
 //! largest `|e|` over the sweep (eq. 3.25, Table 3.5).
 
 use super::problem::Problem;
-use anyhow::{anyhow, bail, Result};
+use anyhow::{bail, Result};
 use rayon::prelude::*;
 use serde::Serialize;
 
@@ -34,19 +34,15 @@ pub struct Sweep {
     pub rank: usize,
 }
 
-/// Sweeps every free parameter of `problem` around the normalised point `x`
-/// over `levels` (at least 3) equally spaced changes from -50% to +50%. A
+/// Sweeps every free parameter of `problem` around the normalised point `x`,
+/// whose predicted output is `nominal` (`Problem::try_predict`), over
+/// `levels` (at least 3) equally spaced changes from -50% to +50%. A
 /// parameter whose value is zero is swept over +-50% of its fitting range
-/// instead (a relative change of zero is no change). An error if the model
-/// cannot be simulated at `x` itself.
-pub fn analyse(problem: &Problem, x: &[f64], levels: usize) -> Result<Vec<Sweep>> {
+/// instead (a relative change of zero is no change).
+pub fn analyse(problem: &Problem, x: &[f64], nominal: &[f64], levels: usize) -> Result<Vec<Sweep>> {
     if levels < 3 {
         bail!("the sweep needs at least 3 levels (-50%, 0, +50%), got {levels}");
     }
-    let nominal = problem
-        .try_predict(x)
-        .map_err(|e| anyhow!("the model cannot be simulated at the nominal parameters: {e}"))?
-        .output;
     let changes: Vec<f64> = (0..levels)
         .map(|i| -0.5 + i as f64 / (levels - 1) as f64)
         .collect();
