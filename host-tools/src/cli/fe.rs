@@ -238,8 +238,14 @@ fn print_summary(s: &Summary) -> std::io::Result<()> {
         s.element_size_mm,
         s.mesh.max_aspect
     );
+    let limit = match (s.time_step.global, s.time_step.global_iterations) {
+        (Some(g), Some(it)) => {
+            format!("whole model {g:.3e} from its highest frequency ({it} Lanczos iterations); ")
+        }
+        _ => String::new(),
+    };
     outln!(
-        "  time step {:.3e} s (hexahedra {:.3e}, trusses {:.3e}); added mass {:.1} kg ({:.2}%)",
+        "  time step {:.3e} s ({limit}elements alone: hexahedra {:.3e}, trusses {:.3e}); added mass {:.1} kg ({:.2}%)",
         s.time_step.dt,
         s.time_step.hex,
         s.time_step.truss,

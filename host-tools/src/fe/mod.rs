@@ -9,7 +9,8 @@
 //! * [`concrete`], [`steel`]: concrete damaged plasticity and hardening
 //!   steel (thesis 2.2), tested at the material point.
 //! * [`model`], [`explicit`]: assembly, time step, mass scaling, the
-//!   central-difference solver with the rigid top.
+//!   central-difference solver with the rigid top; [`stable_step`]: the
+//!   global stable step from the model's highest frequency.
 //! * [`quasi_static`], [`output`], [`run`]: energy checks, CSV and VTK
 //!   output, a whole analysis.
 //! * [`section`]: shear stress across the mid-height section (thesis Figs
@@ -39,5 +40,6 @@ pub mod run;
 pub mod section;
 pub mod simd;
 pub mod specimen;
+pub mod stable_step;
 pub mod steel;
 pub mod torque_twist;

@@ -8,6 +8,7 @@ use super::material::{BarMaterial, SolidMaterial};
 use super::mesh::Mesh;
 use super::rebar::{BarSet, Embedding};
 use super::simd::{F4, LANES};
+use super::stable_step;
 
 /// Numerical settings of the explicit procedure.
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
@@ -20,8 +21,10 @@ pub struct Settings {
     pub bulk_linear: f64,
     /// Quadratic bulk-viscosity coefficient `b2` (ABAQUS default 1.2).
     pub bulk_quadratic: f64,
-    /// Fraction of the element-by-element stable step used.
+    /// Fraction of the stable step used.
     pub dt_safety: f64,
+    /// How the stable step is estimated.
+    pub time_step: TimeStep,
     /// Mass scaling: elements whose stable step is below this one get
     /// their density raised to reach it, s.
     pub mass_scaling_dt: Option<f64>,
@@ -34,9 +37,22 @@ impl Default for Settings {
             bulk_linear: 0.06,
             bulk_quadratic: 1.2,
             dt_safety: 0.9,
+            time_step: TimeStep::Global,
             mass_scaling_dt: None,
         }
     }
+}
+
+/// How the stable time step is estimated.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum TimeStep {
+    /// The smallest of the elements' own bounds: `L_e / c_d` of each
+    /// hexahedron (bulk viscosity included) and `L / c` of each truss.
+    Element,
+    /// The highest frequency of the whole model
+    /// ([`super::stable_step`]); ABAQUS/Explicit's global estimate.
+    Global,
 }
 
 /// Stress and history of one truss.
@@ -94,7 +110,14 @@ pub struct StepLimits {
     pub hex: f64,
     /// Smallest stable step of the truss segments, s.
     pub truss: f64,
-    /// The step used: safety times the smallest step after mass scaling, s.
+    /// Stable step of the whole model from its highest frequency (bulk
+    /// viscosity included, after mass scaling), s; `None` with
+    /// [`TimeStep::Element`].
+    pub global: Option<f64>,
+    /// Lanczos iterations of the global estimate.
+    pub global_iterations: Option<usize>,
+    /// The step used: safety times the global step, or times the smallest
+    /// element step after mass scaling, s.
     pub dt: f64,
 }
 
@@ -247,7 +270,7 @@ impl<M: SolidMaterial, B: BarMaterial> Model<M, B> {
             }
         }
         let truss_state = vec![TrussState::default(); embedding.trusses.len()];
-        Model {
+        let mut model = Model {
             hex_rows: Rows::build(n_nodes, &hex_items),
             truss_rows: Rows::build(n_nodes, &truss_items),
             mesh,
@@ -261,12 +284,22 @@ impl<M: SolidMaterial, B: BarMaterial> Model<M, B> {
             limits: StepLimits {
                 hex: dt_hex,
                 truss: dt_truss,
+                global: None,
+                global_iterations: None,
                 dt: settings.dt_safety * dt_min,
             },
             physical_mass: physical,
             added_mass: added,
             settings,
+        };
+        if settings.time_step == TimeStep::Global {
+            let f = stable_step::highest_frequency(&model);
+            let dt = 2.0 / f.omega_max * visc;
+            model.limits.global = Some(dt);
+            model.limits.global_iterations = Some(f.iterations);
+            model.limits.dt = settings.dt_safety * dt;
         }
+        model
     }
 
     /// The time step, s.

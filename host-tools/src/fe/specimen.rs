@@ -12,8 +12,8 @@
 //! [transverse]   # kind = "spiral" | "hoops", bar_diameter_mm, spacing_mm, yield_mpa
 //! [steel]        # elastic_modulus_mpa, density_kg_m3
 //! [loading]      # axial_force_kn, axial_ramp_s, twist = [[s, rad], ...], interpolation
-//! [analysis]     # element_size_mm, hourglass_scale, bulk_viscosity, dt_safety, mass_scaling_dt_s,
-//!                # stop_below_peak, threads
+//! [analysis]     # element_size_mm, hourglass_scale, bulk_viscosity, dt_safety, time_step,
+//!                # mass_scaling_dt_s, stop_below_peak, threads
 //! [output]       # samples, vtk_every_s, [[output.rebar_station]]
 //! [reference]    # Table 1.1 ratios, checked against the bar layout;
 //!                # [reference.table_2_1]: the torques a run is compared with
@@ -25,7 +25,7 @@ use super::explicit::{dof, Control};
 use super::history::{History, Interpolation};
 use super::material::{ElasticBar, Isotropic};
 use super::mesh::{Mesh, Section};
-use super::model::Settings;
+use super::model::{Settings, TimeStep};
 use super::rebar::{self, BarSet};
 use super::steel::{HardeningSteel, HARDENING_RATIO};
 use serde::Deserialize;
@@ -183,6 +183,9 @@ pub struct AnalysisSpec {
     pub bulk_viscosity: [f64; 2],
     /// Fraction of the stable step used.
     pub dt_safety: f64,
+    /// How the stable step is estimated: `"global"` (default) or
+    /// `"element"` (see [`TimeStep`]).
+    pub time_step: Option<TimeStep>,
     /// Mass-scaling target step, s.
     pub mass_scaling_dt_s: Option<f64>,
     /// End the run once the torque, after its peak, has fallen below this
@@ -1191,6 +1194,7 @@ impl Specimen {
             bulk_linear: a.bulk_viscosity[0],
             bulk_quadratic: a.bulk_viscosity[1],
             dt_safety: a.dt_safety,
+            time_step: a.time_step.unwrap_or(TimeStep::Global),
             mass_scaling_dt: a.mass_scaling_dt_s,
         }
     }
@@ -1400,6 +1404,11 @@ mod tests {
                 "element_size_mm = 25.0".to_string(),
                 "element_size_mm = 0.5".to_string(),
                 "a mesh of at most 5000000 elements, found 0.5 mm, which gives about 1.73e9",
+            ),
+            (
+                "time_step = \"global\"".to_string(),
+                "time_step = \"fast\"".to_string(),
+                "unknown variant `fast`, expected `element` or `global`",
             ),
             (
                 "stop_below_peak = 0.5".to_string(),
