@@ -10,4 +10,5 @@ pub mod export;
 pub mod fe;
 pub mod fit;
 pub mod model;
+mod random;
 pub mod report;

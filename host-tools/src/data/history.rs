@@ -14,6 +14,8 @@
 use std::f64::consts::PI;
 use std::fmt;
 
+use crate::random::SplitMix64;
+
 /// A generator parameter out of range.
 #[derive(Clone, Debug, PartialEq)]
 pub struct HistoryError(String);
@@ -255,32 +257,6 @@ impl Irregular {
                 }
             })
             .collect())
-    }
-}
-
-/// SplitMix64 (Steele, Lea & Flood 2014): a tiny, fast, well-mixed 64-bit
-/// generator whose stream is fixed by its definition.
-#[derive(Clone, Debug)]
-pub(crate) struct SplitMix64 {
-    state: u64,
-}
-
-impl SplitMix64 {
-    pub(crate) fn new(seed: u64) -> Self {
-        SplitMix64 { state: seed }
-    }
-
-    pub(crate) fn next_u64(&mut self) -> u64 {
-        self.state = self.state.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.state;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
-    }
-
-    /// Uniform in (0, 1), never 0 or 1: the 53 top bits, centred in their cell.
-    pub(crate) fn open01(&mut self) -> f64 {
-        ((self.next_u64() >> 11) as f64 + 0.5) / (1u64 << 53) as f64
     }
 }
 

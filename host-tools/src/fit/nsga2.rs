@@ -53,7 +53,6 @@ mod binary_coded;
 mod front;
 mod ranking;
 mod real_coded;
-mod rng;
 pub mod test_problems;
 
 use std::cmp::Ordering;
@@ -66,10 +65,10 @@ use rayon::prelude::*;
 pub use binary_coded::MAX_BITS;
 pub use front::{closest_to_origin, write_front_csv};
 
+use crate::random::Rng;
 use ranking::{
     constrained_domination, crowded_comparison, crowding_distances, non_dominated_fronts, Ranked,
 };
-use rng::Rng;
 
 /// The interval a variable lives in, `lower < upper`, both finite.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -2,7 +2,7 @@
 //! and the irregular path's generator, filter and statistics.
 
 use super::data_dir;
-use crate::data::history::{BandPass, Normal, SplitMix64};
+use crate::data::history::{BandPass, Normal};
 use crate::data::{read, Cycles, Irregular, Protocol, ReadOptions, Shape, Threshold};
 use std::f64::consts::PI;
 
@@ -59,15 +59,6 @@ fn protocols() {
     .generate()
     .is_err());
     assert!(Protocol::geometric(1.0, 1.0, 6.0, 2, 40).is_err());
-}
-
-#[test]
-fn splitmix64_known_answers() {
-    // The reference stream of SplitMix64 seeded with 0.
-    let mut g = SplitMix64::new(0);
-    assert_eq!(g.next_u64(), 0xE220_A839_7B1D_CDAF);
-    assert_eq!(g.next_u64(), 0x6E78_9E6A_A1B9_65F4);
-    assert_eq!(g.next_u64(), 0x06C4_5D18_8009_454F);
 }
 
 #[test]

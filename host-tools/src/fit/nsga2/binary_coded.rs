@@ -7,8 +7,8 @@
 //! A genome holds one word per variable, bit `bits - 1` first in the string (the thesis writes
 //! the most significant bit on the left).
 
-use super::rng::Rng;
 use super::{BinaryCrossover, Bounds};
+use crate::random::Rng;
 
 /// The most bits a variable may have: every decoded value is then exact in an `f64`.
 pub const MAX_BITS: u32 = 52;

@@ -4,8 +4,8 @@
 //! Children never leave the bounds: the bounded forms shape their spread distributions so that
 //! no probability falls outside, and the final `clamp` only guards the last rounding bit.
 
-use super::rng::Rng;
 use super::Bounds;
+use crate::random::Rng;
 
 /// Parents closer than this in one variable are copied unchanged, as in the reference code
 /// (SBX's spread factor divides by their distance).

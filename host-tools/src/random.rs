@@ -1,36 +1,52 @@
-//! The optimiser's random numbers: xoshiro256** (Blackman and Vigna 2021, "Scrambled linear
-//! pseudorandom number generators") seeded through SplitMix64, as its authors recommend.
+//! Seeded pseudo-random numbers of our own, so that a seed means the same stream on every
+//! platform and with every dependency version: a fit run with `--seed 7` today gives the same front
+//! next year, and the FE solver's stable-step estimate starts from the same vector every run.
 //!
-//! Our own small generator so that a seed means the same stream on every platform and with every
-//! dependency version: a fit run with `--seed 7` today gives the same front next year.
+//! * [`SplitMix64`] (Steele, Lea and Flood 2014): a tiny, well-mixed 64-bit generator.
+//! * [`Rng`]: xoshiro256** (Blackman and Vigna 2021, "Scrambled linear pseudorandom number
+//!   generators") seeded through SplitMix64, as its authors recommend; the optimiser's generator.
 
-/// One step of SplitMix64 (Steele, Lea and Flood 2014): advances `state` and returns the mixed value.
-pub(super) fn splitmix64(state: &mut u64) -> u64 {
-    *state = state.wrapping_add(0x9e37_79b9_7f4a_7c15);
-    let mut z = *state;
-    z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-    z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-    z ^ (z >> 31)
+/// SplitMix64: a 64-bit counter advanced by the golden-ratio increment and mixed by two
+/// multiply-xorshift rounds. Its stream is fixed by its definition.
+#[derive(Clone, Debug)]
+pub(crate) struct SplitMix64 {
+    state: u64,
+}
+
+impl SplitMix64 {
+    /// The stream whose counter starts at `seed`.
+    pub(crate) fn new(seed: u64) -> Self {
+        SplitMix64 { state: seed }
+    }
+
+    /// The next 64 random bits.
+    pub(crate) fn next_u64(&mut self) -> u64 {
+        self.state = self.state.wrapping_add(0x9e37_79b9_7f4a_7c15);
+        let mut z = self.state;
+        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+        z ^ (z >> 31)
+    }
+
+    /// Uniform in (0, 1), never 0 or 1: the 53 top bits, centred in their cell.
+    pub(crate) fn open01(&mut self) -> f64 {
+        ((self.next_u64() >> 11) as f64 + 0.5) / (1u64 << 53) as f64
+    }
 }
 
 /// xoshiro256**: 256 bits of state, period 2^256 - 1.
 #[derive(Clone, Debug, PartialEq, Eq)]
-pub(super) struct Rng {
+pub(crate) struct Rng {
     s: [u64; 4],
 }
 
 impl Rng {
     /// The generator whose state is four consecutive SplitMix64 outputs from `seed`. SplitMix64 is
     /// a bijection of its counter, so the four words are distinct and never all zero.
-    pub(super) fn seed_from_u64(seed: u64) -> Self {
-        let mut sm = seed;
+    pub(crate) fn seed_from_u64(seed: u64) -> Self {
+        let mut sm = SplitMix64::new(seed);
         Rng {
-            s: [
-                splitmix64(&mut sm),
-                splitmix64(&mut sm),
-                splitmix64(&mut sm),
-                splitmix64(&mut sm),
-            ],
+            s: [sm.next_u64(), sm.next_u64(), sm.next_u64(), sm.next_u64()],
         }
     }
 
@@ -40,7 +56,7 @@ impl Rng {
     }
 
     /// The next 64 random bits.
-    pub(super) fn next_u64(&mut self) -> u64 {
+    pub(crate) fn next_u64(&mut self) -> u64 {
         let s = &mut self.s;
         let result = s[1].wrapping_mul(5).rotate_left(7).wrapping_mul(9);
         let t = s[1] << 17;
@@ -54,17 +70,17 @@ impl Rng {
     }
 
     /// Uniform on [0, 1): the top 53 bits scaled by 2^-53, so every value is a multiple of 2^-53.
-    pub(super) fn uniform(&mut self) -> f64 {
+    pub(crate) fn uniform(&mut self) -> f64 {
         (self.next_u64() >> 11) as f64 * (1.0 / (1u64 << 53) as f64)
     }
 
     /// True with probability `p` (`p >= 1` always true, `p <= 0` never).
-    pub(super) fn chance(&mut self, p: f64) -> bool {
+    pub(crate) fn chance(&mut self, p: f64) -> bool {
         self.uniform() < p
     }
 
     /// Uniform on `0..n` without modulo bias (Lemire 2019, multiply and reject). `n` must be > 0.
-    pub(super) fn below(&mut self, n: usize) -> usize {
+    pub(crate) fn below(&mut self, n: usize) -> usize {
         debug_assert!(n > 0);
         let range = n as u64;
         let mut m = u128::from(self.next_u64()) * u128::from(range);
@@ -78,7 +94,7 @@ impl Rng {
     }
 
     /// Fisher-Yates shuffle.
-    pub(super) fn shuffle<T>(&mut self, items: &mut [T]) {
+    pub(crate) fn shuffle<T>(&mut self, items: &mut [T]) {
         for i in (1..items.len()).rev() {
             let j = self.below(i + 1);
             items.swap(i, j);
@@ -92,8 +108,8 @@ mod tests {
 
     #[test]
     fn splitmix64_matches_the_published_vector_for_seed_zero() {
-        let mut state = 0;
-        let got: Vec<u64> = (0..4).map(|_| splitmix64(&mut state)).collect();
+        let mut g = SplitMix64::new(0);
+        let got: Vec<u64> = (0..4).map(|_| g.next_u64()).collect();
         assert_eq!(
             got,
             [
