@@ -242,6 +242,9 @@ fn print_summary(s: &Summary) -> std::io::Result<()> {
         (Some(g), Some(it)) => {
             format!("whole model {g:.3e} from its highest frequency ({it} Lanczos iterations); ")
         }
+        (None, Some(it)) => format!(
+            "the whole model's highest frequency had not settled after {it} Lanczos iterations, so the elements' step is used; "
+        ),
         _ => String::new(),
     };
     outln!(

@@ -243,18 +243,8 @@ impl<M: SolidMaterial, B: BarMaterial> Solver<M, B> {
                 .zip(points.par_iter())
                 .with_min_len(256)
                 .for_each(|((px, pv), pt)| {
-                    let mut a = [0.0; 3];
-                    let mut b = [0.0; 3];
-                    for k in 0..8 {
-                        let n = pt.hosts[k] as usize;
-                        let w = pt.weights[k];
-                        for i in 0..3 {
-                            a[i] += w * x[n][i];
-                            b[i] += w * v[n][i];
-                        }
-                    }
-                    *px = a;
-                    *pv = b;
+                    *px = pt.interpolate(x);
+                    *pv = pt.interpolate(v);
                 });
 
             // Hexahedra.
@@ -269,12 +259,7 @@ impl<M: SolidMaterial, B: BarMaterial> Solver<M, B> {
                     let mut acc = HexEnergy::default();
                     for (b, f) in bs.iter_mut().zip(fs.chunks_mut(8 * lanes)) {
                         let (forces, en) = hex8::step(b, mat, x, v, dt);
-                        for l in 0..b.len {
-                            for a in 0..8 {
-                                f[8 * l + a] =
-                                    [forces[0][a].0[l], forces[1][a].0[l], forces[2][a].0[l]];
-                            }
-                        }
+                        hex8::scatter(&forces, b.len, f);
                         acc.internal += en.internal;
                         acc.hourglass += en.hourglass;
                         acc.viscous += en.viscous;
@@ -313,24 +298,14 @@ impl<M: SolidMaterial, B: BarMaterial> Solver<M, B> {
 
             // Nodal forces, free-node velocities and positions.
             let (hex_f, truss_f) = (&*hex_f, &*truss_f);
-            let (hr, tr) = (&model.hex_rows, &model.truss_rows);
+            let assembly = &model.assembly;
             let mass = &model.mass;
             f_int
                 .par_chunks_mut(NODE_CHUNK)
                 .enumerate()
                 .for_each(|(c, fs)| {
                     for (k, f) in fs.iter_mut().enumerate() {
-                        let n = c * NODE_CHUNK + k;
-                        let mut s = [0.0; 3];
-                        for &slot in hr.row(n) {
-                            let g = hex_f[slot as usize];
-                            s = [s[0] + g[0], s[1] + g[1], s[2] + g[2]];
-                        }
-                        for &(slot, w) in tr.row(n) {
-                            let g = truss_f[slot as usize];
-                            s = [s[0] + w * g[0], s[1] + w * g[1], s[2] + w * g[2]];
-                        }
-                        *f = s;
+                        *f = assembly.force(hex_f, truss_f, c * NODE_CHUNK + k);
                     }
                 });
             let de = hex_e.iter().fold(HexEnergy::default(), |a, e| HexEnergy {

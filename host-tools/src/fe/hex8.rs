@@ -227,6 +227,18 @@ pub struct HexEnergy {
 /// Nodal internal forces of a batch, `f[i][a]`.
 pub type HexForces = [[F4; 8]; 3];
 
+/// Scatters a batch's forces to per-element slots: `out[8 l + a]` is the
+/// force on node `a` of the element in lane `l`, for the batch's `len` real
+/// elements.
+#[inline(always)]
+pub fn scatter(forces: &HexForces, len: usize, out: &mut [[f64; 3]]) {
+    for l in 0..len {
+        for a in 0..8 {
+            out[8 * l + a] = [forces[0][a].0[l], forces[1][a].0[l], forces[2][a].0[l]];
+        }
+    }
+}
+
 /// Gathers the coordinates of a batch from a node array.
 #[inline(always)]
 pub fn gather(nodes: &[[u32; LANES]; 8], src: &[[f64; 3]]) -> [[F4; 8]; 3] {

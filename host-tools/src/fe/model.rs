@@ -103,6 +103,35 @@ impl<T: Copy> Rows<T> {
     }
 }
 
+/// The node-to-contribution tables of the force assembly.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Assembly {
+    /// Hexahedron force slots (`8 e + a`) of each node.
+    pub hex: Rows<u32>,
+    /// Truss force slots (`2 t + end`) and weights of each node.
+    pub truss: Rows<(u32, f64)>,
+}
+
+impl Assembly {
+    /// The internal force on node `n`: the sum of its hexahedra's slots in
+    /// `hex_f` (laid out as by [`hex8::scatter`]) and of its share of the
+    /// truss-end forces in `truss_f` (`2 t + end`), in the fixed order of
+    /// the rows, so that the sum does not depend on threads.
+    #[inline(always)]
+    pub fn force(&self, hex_f: &[[f64; 3]], truss_f: &[[f64; 3]], n: usize) -> [f64; 3] {
+        let mut s = [0.0; 3];
+        for &slot in self.hex.row(n) {
+            let g = hex_f[slot as usize];
+            s = [s[0] + g[0], s[1] + g[1], s[2] + g[2]];
+        }
+        for &(slot, w) in self.truss.row(n) {
+            let g = truss_f[slot as usize];
+            s = [s[0] + w * g[0], s[1] + w * g[1], s[2] + w * g[2]];
+        }
+        s
+    }
+}
+
 /// Stable time steps before and after mass scaling.
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
 pub struct StepLimits {
@@ -112,9 +141,11 @@ pub struct StepLimits {
     pub truss: f64,
     /// Stable step of the whole model from its highest frequency (bulk
     /// viscosity included, after mass scaling), s; `None` with
-    /// [`TimeStep::Element`].
+    /// [`TimeStep::Element`], and when the estimate did not settle (the
+    /// element step is used then).
     pub global: Option<f64>,
-    /// Lanczos iterations of the global estimate.
+    /// Lanczos iterations of the global estimate (with
+    /// [`TimeStep::Global`], settled or not).
     pub global_iterations: Option<usize>,
     /// The step used: safety times the global step, or times the smallest
     /// element step after mass scaling, s.
@@ -139,10 +170,8 @@ pub struct Model<M: SolidMaterial, B: BarMaterial> {
     pub truss_state: Vec<TrussState<B::State>>,
     /// Lumped nodal masses (scaled), kg.
     pub mass: Vec<f64>,
-    /// Hexahedron force slots (`8 e + a`) of each node.
-    pub hex_rows: Rows<u32>,
-    /// Truss force slots (`2 t + end`) and weights of each node.
-    pub truss_rows: Rows<(u32, f64)>,
+    /// Which element forces each node sums.
+    pub assembly: Assembly,
     /// The time steps.
     pub limits: StepLimits,
     /// Physical mass, kg.
@@ -271,8 +300,10 @@ impl<M: SolidMaterial, B: BarMaterial> Model<M, B> {
         }
         let truss_state = vec![TrussState::default(); embedding.trusses.len()];
         let mut model = Model {
-            hex_rows: Rows::build(n_nodes, &hex_items),
-            truss_rows: Rows::build(n_nodes, &truss_items),
+            assembly: Assembly {
+                hex: Rows::build(n_nodes, &hex_items),
+                truss: Rows::build(n_nodes, &truss_items),
+            },
             mesh,
             solid,
             bar_materials,
@@ -293,11 +324,15 @@ impl<M: SolidMaterial, B: BarMaterial> Model<M, B> {
             settings,
         };
         if settings.time_step == TimeStep::Global {
-            let f = stable_step::highest_frequency(&model);
-            let dt = 2.0 / f.omega_max * visc;
-            model.limits.global = Some(dt);
-            model.limits.global_iterations = Some(f.iterations);
-            model.limits.dt = settings.dt_safety * dt;
+            match stable_step::highest_frequency(&model, stable_step::MAX_ITERATIONS) {
+                Ok(f) => {
+                    let dt = 2.0 / f.omega_max * visc;
+                    model.limits.global = Some(dt);
+                    model.limits.global_iterations = Some(f.iterations);
+                    model.limits.dt = settings.dt_safety * dt;
+                }
+                Err(e) => model.limits.global_iterations = Some(e.iterations),
+            }
         }
         model
     }

@@ -126,6 +126,23 @@ pub struct EmbeddedPoint {
     pub weights: [f64; 8],
 }
 
+impl EmbeddedPoint {
+    /// The nodal field `f` (positions, velocities, displacements)
+    /// interpolated to the point with the host's shape functions.
+    #[inline(always)]
+    pub fn interpolate(&self, f: &[[f64; 3]]) -> [f64; 3] {
+        let mut y = [0.0; 3];
+        for k in 0..8 {
+            let n = self.hosts[k] as usize;
+            let w = self.weights[k];
+            for i in 0..3 {
+                y[i] += w * f[n][i];
+            }
+        }
+        y
+    }
+}
+
 /// A truss between two embedded points.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Truss {
@@ -251,12 +268,7 @@ mod tests {
         ];
         let emb = embed(&mesh, &sets).expect("inside");
         for (pt, x) in emb.points.iter().zip(&emb.positions) {
-            let mut y = [0.0; 3];
-            for a in 0..8 {
-                for i in 0..3 {
-                    y[i] += pt.weights[a] * mesh.nodes[pt.hosts[a] as usize][i];
-                }
-            }
+            let y = pt.interpolate(&mesh.nodes);
             assert!((0..3).all(|i| (y[i] - x[i]).abs() < 1e-12));
             assert!((pt.weights.iter().sum::<f64>() - 1.0).abs() < 1e-14);
         }

@@ -28,7 +28,10 @@
 //! The Lanczos method on `M^-1/2 K M^-1/2` approaches `omega_max^2` from
 //! below: its largest Ritz value never exceeds the largest eigenvalue and
 //! grows with every iteration. It stops when that value has grown by less
-//! than [`TOLERANCE`] over [`WINDOW`] iterations. The test
+//! than [`TOLERANCE`] over [`WINDOW`] iterations. An estimate that has not
+//! settled within [`MAX_ITERATIONS`] lies below `omega_max` by an unknown
+//! margin: the model then keeps the element-by-element step, and the run's
+//! summary says so. The test
 //! `the_global_step_is_the_stability_limit` runs the solver just below and
 //! just above the bound it gives.
 
@@ -36,6 +39,7 @@ use super::hex8::{self, HexBatch};
 use super::material::{BarMaterial, Elastic, SolidMaterial};
 use super::model::Model;
 use super::simd::{F4, LANES};
+use crate::random::SplitMix64;
 use rayon::prelude::*;
 
 /// Relative growth of the largest Ritz value below which the iteration
@@ -43,8 +47,11 @@ use rayon::prelude::*;
 pub const TOLERANCE: f64 = 1e-6;
 /// Iterations over which that growth is measured.
 pub const WINDOW: usize = 20;
-/// Most iterations.
+/// Most iterations; a model whose estimate has not settled by then keeps
+/// the element-by-element step.
 pub const MAX_ITERATIONS: usize = 2000;
+/// Seed of the start vector's [`SplitMix64`] stream.
+const START_SEED: u64 = 0x5eed;
 
 /// The highest natural frequency of a model.
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
@@ -109,24 +116,9 @@ impl<'a, M: SolidMaterial, B: BarMaterial> Stiffness<'a, M, B> {
                 b.stress = [F4::ZERO; 6];
                 b.hg = [[F4::ZERO; 4]; 3];
                 let (forces, _) = hex8::step(b, elastic, x, d, 1.0);
-                for l in 0..b.len {
-                    for a in 0..8 {
-                        f[8 * l + a] = [forces[0][a].0[l], forces[1][a].0[l], forces[2][a].0[l]];
-                    }
-                }
+                hex8::scatter(&forces, b.len, f);
             });
         let emb = &model.embedding;
-        let at = |p: usize| {
-            let pt = &emb.points[p];
-            let mut s = [0.0; 3];
-            for k in 0..8 {
-                let n = pt.hosts[k] as usize;
-                for i in 0..3 {
-                    s[i] += pt.weights[k] * d[n][i];
-                }
-            }
-            s
-        };
         self.truss_f
             .par_chunks_mut(2)
             .zip(emb.trusses.par_iter())
@@ -134,47 +126,37 @@ impl<'a, M: SolidMaterial, B: BarMaterial> Stiffness<'a, M, B> {
                 let (p, q) = (t.ends[0] as usize, t.ends[1] as usize);
                 let (xp, xq) = (emb.positions[p], emb.positions[q]);
                 let axis: [f64; 3] = std::array::from_fn(|i| (xq[i] - xp[i]) / t.length);
-                let (dp, dq) = (at(p), at(q));
+                let (dp, dq) = (emb.points[p].interpolate(d), emb.points[q].interpolate(d));
                 let stretch: f64 = (0..3).map(|i| axis[i] * (dq[i] - dp[i])).sum();
                 let n = model.bar_materials[t.set as usize].modulus() * t.area * stretch / t.length;
                 f[0] = std::array::from_fn(|i| -n * axis[i]);
                 f[1] = std::array::from_fn(|i| n * axis[i]);
             });
         let (hex_f, truss_f) = (&self.hex_f, &self.truss_f);
-        out.par_iter_mut().enumerate().for_each(|(n, o)| {
-            let mut s = [0.0; 3];
-            for &slot in model.hex_rows.row(n) {
-                let g = hex_f[slot as usize];
-                s = [s[0] + g[0], s[1] + g[1], s[2] + g[2]];
-            }
-            for &(slot, w) in model.truss_rows.row(n) {
-                let g = truss_f[slot as usize];
-                s = [s[0] + w * g[0], s[1] + w * g[1], s[2] + w * g[2]];
-            }
-            *o = s;
-        });
+        let assembly = &model.assembly;
+        out.par_iter_mut()
+            .enumerate()
+            .for_each(|(n, o)| *o = assembly.force(hex_f, truss_f, n));
     }
 }
 
 /// The highest natural frequency of the unsupported model with its initial
-/// elastic stiffness and lumped masses (see the module docs).
-pub fn highest_frequency<M: SolidMaterial, B: BarMaterial>(model: &Model<M, B>) -> Frequency {
+/// elastic stiffness and lumped masses (see the module docs), or
+/// [`Unsettled`] when the Lanczos iteration has not settled within `max_iterations`
+/// (its estimate then lies below `omega_max` by an unknown margin, and a
+/// step from it could be unstable) or found no positive frequency.
+pub fn highest_frequency<M: SolidMaterial, B: BarMaterial>(
+    model: &Model<M, B>,
+    max_iterations: usize,
+) -> Result<Frequency, Unsettled> {
     let n = model.mass.len();
     let inv_sqrt_m: Vec<f64> = model.mass.iter().map(|m| 1.0 / m.sqrt()).collect();
     let mut k = Stiffness::new(model);
     // A start with a component along every mode: a fixed pseudo-random
-    // vector (a 64-bit linear congruential sequence), so the estimate does
-    // not vary from run to run.
-    let mut seed = 0x9e37_79b9_7f4a_7c15u64;
+    // vector, so the estimate does not vary from run to run.
+    let mut rng = SplitMix64::new(START_SEED);
     let mut q: Vec<[f64; 3]> = (0..n)
-        .map(|_| {
-            std::array::from_fn(|_| {
-                seed = seed
-                    .wrapping_mul(6_364_136_223_846_793_005)
-                    .wrapping_add(1_442_695_040_888_963_407);
-                (seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5
-            })
-        })
+        .map(|_| std::array::from_fn(|_| rng.open01() - 0.5))
         .collect();
     let q_norm = norm(&q);
     scale(&mut q, 1.0 / q_norm);
@@ -184,7 +166,7 @@ pub fn highest_frequency<M: SolidMaterial, B: BarMaterial>(model: &Model<M, B>) 
     let (mut alpha, mut beta) = (Vec::new(), Vec::new());
     let mut history: Vec<f64> = Vec::new();
     let mut b_prev = 0.0;
-    for it in 0..MAX_ITERATIONS {
+    for it in 0..max_iterations {
         // w = M^-1/2 K M^-1/2 q - beta q_prev.
         for i in 0..n {
             d[i] = q[i].map(|c| c * inv_sqrt_m[i]);
@@ -205,12 +187,20 @@ pub fn highest_frequency<M: SolidMaterial, B: BarMaterial>(model: &Model<M, B>) 
         alpha.push(a);
         let theta = largest_eigenvalue(&alpha, &beta);
         history.push(theta);
-        let converged = it >= WINDOW && theta - history[it - WINDOW] <= TOLERANCE * theta;
+        let settled = it >= WINDOW && theta - history[it - WINDOW] <= TOLERANCE * theta;
         let b = norm(&w);
-        if converged || !(b > 1e-14 * theta.abs()) {
-            return Frequency {
-                omega_max: theta.max(0.0).sqrt(),
-                iterations: it + 1,
+        // A vanishing residual: the Krylov space is invariant and theta exact.
+        if settled || !(b > 1e-14 * theta.abs()) {
+            return if theta > 0.0 && theta.is_finite() {
+                Ok(Frequency {
+                    omega_max: theta.sqrt(),
+                    iterations: it + 1,
+                })
+            } else {
+                Err(Unsettled {
+                    iterations: it + 1,
+                    estimate: theta,
+                })
             };
         }
         beta.push(b);
@@ -219,10 +209,20 @@ pub fn highest_frequency<M: SolidMaterial, B: BarMaterial>(model: &Model<M, B>) 
         scale(&mut q, 1.0 / b);
         b_prev = b;
     }
-    Frequency {
-        omega_max: history.last().map_or(0.0, |t| t.max(0.0).sqrt()),
-        iterations: MAX_ITERATIONS,
-    }
+    Err(Unsettled {
+        iterations: max_iterations,
+        estimate: history.last().copied().unwrap_or(f64::NAN),
+    })
+}
+
+/// No global estimate: the Lanczos iteration did not settle, or found no
+/// positive `omega_max^2`.
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
+pub struct Unsettled {
+    /// Iterations taken.
+    pub iterations: usize,
+    /// The last estimate of `omega_max^2`, (rad/s)^2.
+    pub estimate: f64,
 }
 
 fn norm(v: &[[f64; 3]]) -> f64 {
@@ -347,6 +347,27 @@ mod tests {
         }
     }
 
+    #[test]
+    fn an_estimate_that_has_not_settled_is_refused_and_the_element_step_kept() {
+        let mesh = Mesh::extrude(Section::square(0.2, 0.025), 0.4, 0.025);
+        let m: Model<Elastic, ElasticBar> = Model::new(
+            mesh,
+            Elastic::new(CONCRETE),
+            &[],
+            vec![],
+            Default::default(),
+            Settings::default(),
+        );
+        // Five iterations cannot show growth below the tolerance over a
+        // window of twenty: the estimate is refused, not returned.
+        let e = highest_frequency(&m, 5).expect_err("five iterations cannot settle");
+        assert_eq!(e.iterations, 5);
+        let settled = highest_frequency(&m, MAX_ITERATIONS).expect("settles");
+        assert!(settled.iterations > WINDOW);
+        // The refused estimate lies below the settled one (Ritz values grow).
+        assert!(e.estimate > 0.0 && e.estimate < settled.omega_max.powi(2));
+    }
+
     /// A column of twelve layers with the O-grid of the circular specimens and
     /// embedded longitudinal bars and hoops, elastic, without bulk
     /// viscosity (so the bound is `2 / omega_max`).
@@ -397,14 +418,9 @@ mod tests {
         model.limits.dt = dt;
         let controls = std::array::from_fn(|_| Control::free());
         let mut s = Solver::new(model, controls, 2).expect("a thread pool");
-        let mut seed = 12_345u64;
+        let mut rng = SplitMix64::new(12_345);
         for v in s.v.iter_mut() {
-            *v = std::array::from_fn(|_| {
-                seed = seed
-                    .wrapping_mul(6_364_136_223_846_793_005)
-                    .wrapping_add(1_442_695_040_888_963_407);
-                1e-6 * ((seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5)
-            });
+            *v = std::array::from_fn(|_| 1e-6 * (rng.open01() - 0.5));
         }
         let speed = |s: &Solver<Elastic, ElasticBar>| {
             s.v.iter()
