@@ -9,8 +9,8 @@
 //! * energy balance `|W - IE - VD - KE|` below [`BALANCE_LIMIT`] of
 //!   `max(W, IE + VD + KE)`.
 //!
-//! A run that peaks is also judged over the same window up to its peak
-//! torque ([`EnergyTrace::verdict_until`]): the curve up to the peak can be
+//! A run that peaks is also judged as if it had ended at its peak torque
+//! ([`EnergyTrace::verdict_until`]): the curve up to the peak can be
 //! quasi-static while the collapse after it is not.
 
 use super::explicit::Energies;
@@ -44,23 +44,23 @@ impl EnergyTrace {
         self.verdict_until(f64::INFINITY)
     }
 
-    /// Judges the run's window (which starts where the whole run's
-    /// internal energy first reaches [`WINDOW_START`] of its maximum) up to
-    /// and including time `t_end`: a run's checks up to its peak torque,
-    /// before the collapse of crushed concrete, whose hourglass and kinetic
-    /// energies say nothing about the curve up to the peak. Every ratio is
-    /// then at most the whole run's.
+    /// Judges the run up to and including time `t_end`, as if it had ended
+    /// there: the window starts where the internal energy first reaches
+    /// [`WINDOW_START`] of its maximum up to `t_end`. This gives a run's
+    /// checks up to its peak torque, before the collapse of crushed
+    /// concrete, whose hourglass and kinetic energies say nothing about the
+    /// curve up to the peak; they depend on the run up to the peak alone,
+    /// not on where it ends.
     pub fn verdict_until(&self, t_end: f64) -> Verdict {
-        let ie_max = self.e.iter().fold(0.0f64, |m, e| m.max(e.internal()));
-        let start = self
-            .e
+        let steps = self.t.partition_point(|&t| t <= t_end);
+        let (t, e) = (&self.t[..steps], &self.e[..steps]);
+        let ie_max = e.iter().fold(0.0f64, |m, e| m.max(e.internal()));
+        let start = e
             .iter()
             .position(|e| ie_max > 0.0 && e.internal() >= WINDOW_START * ie_max)
-            .unwrap_or(self.e.len());
-        let steps = self.t.partition_point(|&t| t <= t_end);
-        let end = steps.max(start);
+            .unwrap_or(steps);
         let mut v = Verdict {
-            window_start: self.t.get(start).copied().unwrap_or(f64::NAN),
+            window_start: t.get(start).copied().unwrap_or(f64::NAN),
             max_ke_ie_ratio: 0.0,
             at: f64::NAN,
             max_hourglass_share: 0.0,
@@ -68,7 +68,7 @@ impl EnergyTrace {
             max_imbalance: 0.0,
             steps,
         };
-        for (t, e) in self.t[start..end].iter().zip(&self.e[start..end]) {
+        for (t, e) in t[start..].iter().zip(&e[start..]) {
             let ie = e.internal();
             let r = e.kinetic / ie;
             if !(r <= v.max_ke_ie_ratio) {
@@ -79,7 +79,7 @@ impl EnergyTrace {
             let scale = e.work.abs().max(ie + e.viscous + e.kinetic);
             v.max_imbalance = v.max_imbalance.max(e.imbalance().abs() / scale);
         }
-        if let Some(e) = self.e[..steps].last() {
+        if let Some(e) = e.last() {
             v.final_hourglass_share = e.hourglass / e.internal();
         }
         v
@@ -167,7 +167,7 @@ mod tests {
     }
 
     #[test]
-    fn a_run_is_judged_up_to_its_peak_in_the_same_window() {
+    fn a_run_is_judged_up_to_its_peak_as_if_it_had_ended_there() {
         let mut tr = EnergyTrace::default();
         tr.push(0.0, e(0.0, 0.0, 1e-6, 1e-6));
         tr.push(1.0, e(0.5, 0.01, 0.01, 0.52));
@@ -189,5 +189,24 @@ mod tests {
         let early = tr.verdict_until(0.5);
         assert_eq!(early.max_hourglass_share, 0.0);
         assert!(early.failures().is_empty());
+    }
+
+    #[test]
+    fn the_checks_up_to_a_time_do_not_depend_on_what_follows_it() {
+        // Internal energy 0.05 at t = 1 is 5% of the maximum up to t = 2
+        // but 0.05% of the whole run's: judged up to t = 2, the start-up
+        // kinetic energy at t = 1 is inside the window; judged whole, not.
+        let mut tr = EnergyTrace::default();
+        tr.push(0.0, e(0.0, 0.0, 1e-6, 1e-6));
+        tr.push(1.0, e(0.05, 0.0, 0.03, 0.08));
+        tr.push(2.0, e(1.0, 0.0, 0.01, 1.01));
+        let ended = tr.clone();
+        tr.push(3.0, e(100.0, 0.0, 0.5, 100.5));
+        assert_eq!(tr.verdict().window_start, 2.0);
+        let v = tr.verdict_until(2.0);
+        assert_eq!(v, ended.verdict());
+        assert_eq!(v.window_start, 1.0);
+        assert!((v.max_ke_ie_ratio - 0.6).abs() < 1e-12);
+        assert_eq!(v.failures().len(), 1, "{:?}", v.failures());
     }
 }
