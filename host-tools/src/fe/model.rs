@@ -324,17 +324,29 @@ impl<M: SolidMaterial, B: BarMaterial> Model<M, B> {
             settings,
         };
         if settings.time_step == TimeStep::Global {
-            match stable_step::highest_frequency(&model, stable_step::MAX_ITERATIONS) {
-                Ok(f) => {
-                    let dt = 2.0 / f.omega_max * visc;
-                    model.limits.global = Some(dt);
-                    model.limits.global_iterations = Some(f.iterations);
-                    model.limits.dt = settings.dt_safety * dt;
-                }
-                Err(e) => model.limits.global_iterations = Some(e.iterations),
-            }
+            model.take_global_step(stable_step::MAX_ITERATIONS);
         }
         model
+    }
+
+    /// Replaces the element step by the global one
+    /// (`dt_safety (2 / omega_max)(sqrt(1 + b1^2) - b1)`) when the Lanczos
+    /// estimate settles within `max_iterations`; otherwise keeps the
+    /// element step and records only the iterations taken.
+    pub(super) fn take_global_step(&mut self, max_iterations: usize) {
+        match stable_step::highest_frequency(self, max_iterations) {
+            Ok(f) => {
+                let b1 = self.settings.bulk_linear;
+                let dt = 2.0 / f.omega_max * ((1.0 + b1 * b1).sqrt() - b1);
+                self.limits.global = Some(dt);
+                self.limits.global_iterations = Some(f.iterations);
+                self.limits.dt = self.settings.dt_safety * dt;
+            }
+            Err(e) => {
+                self.limits.global = None;
+                self.limits.global_iterations = Some(e.iterations);
+            }
+        }
     }
 
     /// The time step, s.

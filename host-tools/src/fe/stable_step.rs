@@ -324,21 +324,12 @@ mod tests {
         let h = 0.025;
         let limit = h / CONCRETE.wave_speed();
         for hourglass_scale in [0.0, 1.0] {
-            let mesh = Mesh::extrude(Section::square(0.2, h), 0.4, h);
-            let settings = Settings {
+            let m = block(Settings {
                 bulk_linear: 0.0,
                 bulk_quadratic: 0.0,
                 hourglass_scale,
                 ..Settings::default()
-            };
-            let m: Model<Elastic, ElasticBar> = Model::new(
-                mesh,
-                Elastic::new(CONCRETE),
-                &[],
-                vec![],
-                Default::default(),
-                settings,
-            );
+            });
             let global = m.limits.global.expect("a global estimate");
             assert!(
                 (global / limit - 1.0).abs() < 0.005,
@@ -347,25 +338,44 @@ mod tests {
         }
     }
 
-    #[test]
-    fn an_estimate_that_has_not_settled_is_refused_and_the_element_step_kept() {
+    /// A free block of 8 x 8 x 16 cubes of 25 mm.
+    fn block(settings: Settings) -> Model<Elastic, ElasticBar> {
         let mesh = Mesh::extrude(Section::square(0.2, 0.025), 0.4, 0.025);
-        let m: Model<Elastic, ElasticBar> = Model::new(
+        Model::new(
             mesh,
             Elastic::new(CONCRETE),
             &[],
             vec![],
             Default::default(),
-            Settings::default(),
-        );
+            settings,
+        )
+    }
+
+    #[test]
+    fn an_estimate_that_has_not_settled_is_refused_and_the_element_step_kept() {
+        let m = block(Settings::default());
+        let settled = highest_frequency(&m, MAX_ITERATIONS).expect("settles");
+        assert!(settled.iterations > WINDOW);
+        assert_eq!(m.limits.global_iterations, Some(settled.iterations));
         // Five iterations cannot show growth below the tolerance over a
         // window of twenty: the estimate is refused, not returned.
         let e = highest_frequency(&m, 5).expect_err("five iterations cannot settle");
         assert_eq!(e.iterations, 5);
-        let settled = highest_frequency(&m, MAX_ITERATIONS).expect("settles");
-        assert!(settled.iterations > WINDOW);
         // The refused estimate lies below the settled one (Ritz values grow).
         assert!(e.estimate > 0.0 && e.estimate < settled.omega_max.powi(2));
+        // A model asking for the global step keeps the elements' step then.
+        let mut m = block(Settings {
+            time_step: TimeStep::Element,
+            ..Settings::default()
+        });
+        let element = m.limits.dt;
+        assert_eq!(element, m.settings.dt_safety * m.limits.hex);
+        m.take_global_step(5);
+        assert_eq!(m.limits.global, None);
+        assert_eq!(m.limits.global_iterations, Some(5));
+        assert_eq!(m.limits.dt, element);
+        m.take_global_step(MAX_ITERATIONS);
+        assert!(m.limits.global.is_some() && m.limits.dt != element);
     }
 
     /// A column of twelve layers with the O-grid of the circular specimens and
