@@ -71,7 +71,8 @@ pub struct Energies {
     pub strain: f64,
     /// Hourglass energy (ALLAE).
     pub hourglass: f64,
-    /// Dissipated by bulk viscosity (ALLVD).
+    /// Dissipated by bulk viscosity and by the damping of a preload
+    /// ([`Damping`]) (ALLVD).
     pub viscous: f64,
     /// Kinetic energy (ALLKE).
     pub kinetic: f64,
@@ -89,6 +90,21 @@ impl Energies {
     pub fn imbalance(&self) -> f64 {
         self.work - self.internal() - self.viscous - self.kinetic
     }
+}
+
+/// Mass-proportional damping `-alpha m v` on every free node and on the
+/// rigid top's force-driven degrees of freedom while `t < until`: the
+/// dynamic relaxation of a preload (LS-DYNA's dynamic-relaxation phase),
+/// which brings a column to its static state under the axial force in a few
+/// periods of its first axial mode when `alpha` is near that mode's critical
+/// value `2 omega_1`. Its dissipation is counted in
+/// [`Energies::viscous`] (ABAQUS's ALLVD holds damping too).
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
+pub struct Damping {
+    /// Damping per unit mass, 1/s.
+    pub alpha: f64,
+    /// End of the damped phase, s.
+    pub until: f64,
 }
 
 /// The rigid top and its reference point.
@@ -136,7 +152,7 @@ pub struct Solver<M: SolidMaterial, B: BarMaterial> {
     truss_e: Vec<f64>,
     px: Vec<[f64; 3]>,
     pv: Vec<[f64; 3]>,
-    ke: Vec<f64>,
+    ke: Vec<[f64; 2]>,
     /// The rigid top.
     pub top: RigidTop,
     base: std::ops::Range<usize>,
@@ -146,6 +162,8 @@ pub struct Solver<M: SolidMaterial, B: BarMaterial> {
     pub steps: u64,
     /// Energies at the last step.
     pub energy: Energies,
+    /// Mass-proportional damping of a preload, if any.
+    pub damping: Option<Damping>,
     pool: rayon::ThreadPool,
 }
 
@@ -187,7 +205,7 @@ impl<M: SolidMaterial, B: BarMaterial> Solver<M, B> {
             truss_e: vec![0.0; nt.div_ceil(TRUSS_CHUNK)],
             px: model.embedding.positions.clone(),
             pv: vec![[0.0; 3]; np],
-            ke: vec![0.0; n.div_ceil(NODE_CHUNK)],
+            ke: vec![[0.0; 2]; n.div_ceil(NODE_CHUNK)],
             v: vec![[0.0; 3]; n],
             f_int: vec![[0.0; 3]; n],
             x,
@@ -211,6 +229,7 @@ impl<M: SolidMaterial, B: BarMaterial> Solver<M, B> {
             t: 0.0,
             steps: 0,
             energy: Energies::default(),
+            damping: None,
             pool,
         })
     }
@@ -317,6 +336,12 @@ impl<M: SolidMaterial, B: BarMaterial> Solver<M, B> {
             (de, dtr, mass)
         });
         let f_int = &*f_int;
+        // Damping over the step: a = alpha dt / 2 (0 without, and then the
+        // update below is the undamped one to the last bit).
+        let a = match self.damping {
+            Some(d) if self.t < d.until => 0.5 * d.alpha * dt,
+            _ => 0.0,
+        };
         let (xm, vm) = (&mut self.x, &mut self.v);
         pool.install(|| {
             xm.par_chunks_mut(NODE_CHUNK)
@@ -324,7 +349,7 @@ impl<M: SolidMaterial, B: BarMaterial> Solver<M, B> {
                 .zip(ke.par_iter_mut())
                 .enumerate()
                 .for_each(|(c, ((xs, vs), ke))| {
-                    let mut acc = 0.0;
+                    let (mut acc, mut dis) = (0.0, 0.0);
                     for (k, (xn, vn)) in xs.iter_mut().zip(vs.iter_mut()).enumerate() {
                         let n = c * NODE_CHUNK + k;
                         let im = inv_mass[n];
@@ -333,10 +358,11 @@ impl<M: SolidMaterial, B: BarMaterial> Solver<M, B> {
                         }
                         let f = f_int[n];
                         let old = *vn;
+                        // m (new - old) / dt = -f - alpha m (old + new) / 2.
                         let new = [
-                            old[0] - dt * im * f[0],
-                            old[1] - dt * im * f[1],
-                            old[2] - dt * im * f[2],
+                            (old[0] * (1.0 - a) - dt * im * f[0]) / (1.0 + a),
+                            (old[1] * (1.0 - a) - dt * im * f[1]) / (1.0 + a),
+                            (old[2] * (1.0 - a) - dt * im * f[2]) / (1.0 + a),
                         ];
                         let avg = [
                             0.5 * (old[0] + new[0]),
@@ -344,6 +370,7 @@ impl<M: SolidMaterial, B: BarMaterial> Solver<M, B> {
                             0.5 * (old[2] + new[2]),
                         ];
                         acc += 0.5 * mass[n] * dot(avg, avg);
+                        dis += 2.0 * a * mass[n] * dot(avg, avg);
                         *vn = new;
                         *xn = [
                             xn[0] + dt * new[0],
@@ -351,24 +378,27 @@ impl<M: SolidMaterial, B: BarMaterial> Solver<M, B> {
                             xn[2] + dt * new[2],
                         ];
                     }
-                    *ke = acc;
+                    *ke = [acc, dis];
                 });
         });
-        let ke_nodes: f64 = ke.iter().sum();
-        let (ke_top, work) = self.advance_top(dt);
+        let ke_nodes: f64 = ke.iter().map(|k| k[0]).sum();
+        let damped: f64 = ke.iter().map(|k| k[1]).sum();
+        let (ke_top, work, damped_top) = self.advance_top(dt, a);
         self.energy.strain += de.internal + dtr;
         self.energy.hourglass += de.hourglass;
-        self.energy.viscous += de.viscous;
+        self.energy.viscous += de.viscous + damped + damped_top;
         self.energy.kinetic = ke_nodes + ke_top;
         self.energy.work += work;
         self.t += dt;
         self.steps += 1;
     }
 
-    /// Moves the rigid top: resultants, reference-point dynamics, exact
-    /// rigid positions of the top nodes. Returns the kinetic energy of the
-    /// top nodes and the work increment at the reference point.
-    fn advance_top(&mut self, dt: f64) -> (f64, f64) {
+    /// Moves the rigid top: resultants, reference-point dynamics (damped
+    /// with `a = alpha dt / 2` in its force-driven degrees of freedom),
+    /// exact rigid positions of the top nodes. Returns the kinetic energy of
+    /// the top nodes, the work increment at the reference point and the
+    /// energy the damping dissipated.
+    fn advance_top(&mut self, dt: f64, a: f64) -> (f64, f64, f64) {
         let top = &mut self.top;
         let mut col = [0.0; 6];
         let mut inertia = [0.0; 3];
@@ -386,13 +416,16 @@ impl<M: SolidMaterial, B: BarMaterial> Solver<M, B> {
             inertia[1] += mass * (r[0] * r[0] + r[2] * r[2]);
             inertia[2] += mass * (r[0] * r[0] + r[1] * r[1]);
         }
-        let mut work = 0.0;
+        let (mut work, mut damped) = (0.0, 0.0);
         for k in 0..6 {
             let mk = if k < 3 { top.mass } else { inertia[k - 3] };
             let (vel, load) = match &top.controls[k] {
                 Control::Force(h) => {
                     let g = h.value(self.t);
-                    (top.vel[k] + dt * (g - col[k]) / mk, g)
+                    let vel = (top.vel[k] * (1.0 - a) + dt * (g - col[k]) / mk) / (1.0 + a);
+                    let avg = 0.5 * (top.vel[k] + vel);
+                    damped += 2.0 * a * mk * avg * avg;
+                    (vel, g)
                 }
                 Control::Motion(h) => {
                     let vel = (h.value(self.t + dt) - top.disp[k]) / dt;
@@ -435,7 +468,7 @@ impl<M: SolidMaterial, B: BarMaterial> Solver<M, B> {
             self.v[n] = new;
             self.x[n] = xn;
         }
-        (ke, work)
+        (ke, work, damped)
     }
 
     /// Current positions of the embedded bar points (as of the last

@@ -215,6 +215,7 @@ pub fn run<M: SolidMaterial, B: BarMaterial>(
         .map(|v| ((v / dt).round() as u64).max(1));
     let mut s = Solver::new(model, spec.controls(), threads)
         .with_context(|| format!("starting {threads} worker threads"))?;
+    s.damping = spec.preload_damping();
     let stations = output::resolve_stations(&s, &spec.output.rebar_station);
     let cut = Cut::mid_height(
         &s.model.mesh,

@@ -21,7 +21,7 @@
 //! ```
 
 use super::concrete::{ConcreteDamagedPlasticity, ConcreteParams};
-use super::explicit::{dof, Control};
+use super::explicit::{dof, Control, Damping};
 use super::history::{History, Interpolation};
 use super::material::{ElasticBar, Isotropic};
 use super::mesh::{Mesh, Section};
@@ -162,6 +162,16 @@ pub struct LoadingSpec {
     pub axial_force_kn: f64,
     /// Time over which the axial force is brought on, s.
     pub axial_ramp_s: f64,
+    /// Time the full axial force is held before the twist starts, s
+    /// (default 0).
+    #[serde(default)]
+    pub axial_hold_s: f64,
+    /// Mass-proportional damping during the axial ramp and hold, 1/s
+    /// (default 0, none): the dynamic relaxation of the preload
+    /// ([`super::explicit::Damping`]); `2 omega_1` of the first axial mode
+    /// damps it critically.
+    #[serde(default)]
+    pub axial_damping_per_s: f64,
     /// Twist history `[time s, twist rad]`, time counted from the end of
     /// the axial ramp.
     #[serde(deserialize_with = "pairs")]
@@ -854,6 +864,18 @@ impl Specimen {
                 "the time to apply the axial force in s",
             )?;
         }
+        for (v, path, what) in [
+            (ld.axial_hold_s, "loading.axial_hold_s", "a time in s"),
+            (
+                ld.axial_damping_per_s,
+                "loading.axial_damping_per_s",
+                "a damping in 1/s",
+            ),
+        ] {
+            if !(v.is_finite() && v >= 0.0) {
+                return Err((path.into(), format!("{what}, 0 or more, found {v}")));
+            }
+        }
         // The top starts untwisted: a first row [0, 0.05] would be read as [0, 0].
         if ld.twist.len() < 2 || ld.twist[0] != [0.0, 0.0] {
             return Err((
@@ -1154,13 +1176,25 @@ impl Specimen {
         self.concrete().shear_modulus() * j / self.column.height_m
     }
 
-    /// Start of the twist, s.
+    /// Start of the twist, s: after the axial ramp and hold.
     pub fn twist_start(&self) -> f64 {
         if self.loading.axial_force_kn > 0.0 {
-            self.loading.axial_ramp_s
+            self.loading.axial_ramp_s + self.loading.axial_hold_s
         } else {
             0.0
         }
+    }
+
+    /// The damping of the axial preload, if any: over the ramp and hold
+    /// (none without an axial force, like the ramp and hold themselves, so
+    /// that `--set loading.axial_force_kn=0` runs the file unloaded).
+    pub fn preload_damping(&self) -> Option<Damping> {
+        (self.loading.axial_force_kn > 0.0 && self.loading.axial_damping_per_s > 0.0).then(|| {
+            Damping {
+                alpha: self.loading.axial_damping_per_s,
+                until: self.twist_start(),
+            }
+        })
     }
 
     /// End of the analysis, s.
@@ -1181,7 +1215,10 @@ impl Specimen {
         c[dof::UZ] = Control::Force(if p == 0.0 {
             History::constant(0.0)
         } else {
-            History::new(vec![(0.0, 0.0), (t0, p)], Interpolation::SmoothStep)
+            History::new(
+                vec![(0.0, 0.0), (self.loading.axial_ramp_s, p)],
+                Interpolation::SmoothStep,
+            )
         });
         c
     }
@@ -1409,6 +1446,16 @@ mod tests {
                 "time_step = \"global\"".to_string(),
                 "time_step = \"fast\"".to_string(),
                 "unknown variant `fast`, expected `element` or `global`",
+            ),
+            (
+                "axial_ramp_s = 0.0".to_string(),
+                "axial_ramp_s = 0.0\naxial_hold_s = -1.0".to_string(),
+                "a time in s, 0 or more, found -1",
+            ),
+            (
+                "axial_ramp_s = 0.0".to_string(),
+                "axial_ramp_s = 0.0\naxial_damping_per_s = nan".to_string(),
+                "a damping in 1/s, 0 or more, found NaN",
             ),
             (
                 "stop_below_peak = 0.5".to_string(),
