@@ -152,7 +152,8 @@ pub struct Solver<M: SolidMaterial, B: BarMaterial> {
     truss_e: Vec<f64>,
     px: Vec<[f64; 3]>,
     pv: Vec<[f64; 3]>,
-    ke: Vec<[f64; 2]>,
+    /// Kinetic energy and damping dissipation of each chunk of nodes.
+    node_energy: Vec<[f64; 2]>,
     /// The rigid top.
     pub top: RigidTop,
     base: std::ops::Range<usize>,
@@ -205,7 +206,7 @@ impl<M: SolidMaterial, B: BarMaterial> Solver<M, B> {
             truss_e: vec![0.0; nt.div_ceil(TRUSS_CHUNK)],
             px: model.embedding.positions.clone(),
             pv: vec![[0.0; 3]; np],
-            ke: vec![[0.0; 2]; n.div_ceil(NODE_CHUNK)],
+            node_energy: vec![[0.0; 2]; n.div_ceil(NODE_CHUNK)],
             v: vec![[0.0; 3]; n],
             f_int: vec![[0.0; 3]; n],
             x,
@@ -249,7 +250,7 @@ impl<M: SolidMaterial, B: BarMaterial> Solver<M, B> {
             truss_e,
             px,
             pv,
-            ke,
+            node_energy,
             pool,
             ..
         } = self;
@@ -336,19 +337,21 @@ impl<M: SolidMaterial, B: BarMaterial> Solver<M, B> {
             (de, dtr, mass)
         });
         let f_int = &*f_int;
-        // Damping over the step: a = alpha dt / 2 (0 without, and then the
-        // update below is the undamped one to the last bit).
+        // Damping over the step: a = alpha dt / 2. Without it keep and
+        // scale are 1, and the update below is the undamped one to the last
+        // bit.
         let a = match self.damping {
             Some(d) if self.t < d.until => 0.5 * d.alpha * dt,
             _ => 0.0,
         };
+        let (keep, scale) = (1.0 - a, 1.0 / (1.0 + a));
         let (xm, vm) = (&mut self.x, &mut self.v);
         pool.install(|| {
             xm.par_chunks_mut(NODE_CHUNK)
                 .zip(vm.par_chunks_mut(NODE_CHUNK))
-                .zip(ke.par_iter_mut())
+                .zip(node_energy.par_iter_mut())
                 .enumerate()
-                .for_each(|(c, ((xs, vs), ke))| {
+                .for_each(|(c, ((xs, vs), out))| {
                     let (mut acc, mut dis) = (0.0, 0.0);
                     for (k, (xn, vn)) in xs.iter_mut().zip(vs.iter_mut()).enumerate() {
                         let n = c * NODE_CHUNK + k;
@@ -360,9 +363,9 @@ impl<M: SolidMaterial, B: BarMaterial> Solver<M, B> {
                         let old = *vn;
                         // m (new - old) / dt = -f - alpha m (old + new) / 2.
                         let new = [
-                            (old[0] * (1.0 - a) - dt * im * f[0]) / (1.0 + a),
-                            (old[1] * (1.0 - a) - dt * im * f[1]) / (1.0 + a),
-                            (old[2] * (1.0 - a) - dt * im * f[2]) / (1.0 + a),
+                            (old[0] * keep - dt * im * f[0]) * scale,
+                            (old[1] * keep - dt * im * f[1]) * scale,
+                            (old[2] * keep - dt * im * f[2]) * scale,
                         ];
                         let avg = [
                             0.5 * (old[0] + new[0]),
@@ -378,11 +381,11 @@ impl<M: SolidMaterial, B: BarMaterial> Solver<M, B> {
                             xn[2] + dt * new[2],
                         ];
                     }
-                    *ke = [acc, dis];
+                    *out = [acc, dis];
                 });
         });
-        let ke_nodes: f64 = ke.iter().map(|k| k[0]).sum();
-        let damped: f64 = ke.iter().map(|k| k[1]).sum();
+        let ke_nodes: f64 = node_energy.iter().map(|k| k[0]).sum();
+        let damped: f64 = node_energy.iter().map(|k| k[1]).sum();
         let (ke_top, work, damped_top) = self.advance_top(dt, a);
         self.energy.strain += de.internal + dtr;
         self.energy.hourglass += de.hourglass;

@@ -30,6 +30,16 @@ pub struct Settings {
     pub mass_scaling_dt: Option<f64>,
 }
 
+impl Settings {
+    /// The stable step's factor for the linear bulk viscosity `b1`:
+    /// `sqrt(1 + b1^2) - b1` (ABAQUS/Explicit), the same for the element
+    /// and the global estimates.
+    pub fn viscous_factor(&self) -> f64 {
+        let b1 = self.bulk_linear;
+        (1.0 + b1 * b1).sqrt() - b1
+    }
+}
+
 impl Default for Settings {
     fn default() -> Self {
         Settings {
@@ -197,7 +207,7 @@ impl<M: SolidMaterial, B: BarMaterial> Model<M, B> {
         let g = props.shear_modulus();
         let rho = props.density;
         let b1 = settings.bulk_linear;
-        let visc = (1.0 + b1 * b1).sqrt() - b1;
+        let visc = settings.viscous_factor();
         let target = settings.mass_scaling_dt.unwrap_or(0.0);
         let n_nodes = mesh.nodes.len();
         let mut mass = vec![0.0; n_nodes];
@@ -336,8 +346,7 @@ impl<M: SolidMaterial, B: BarMaterial> Model<M, B> {
     pub(super) fn take_global_step(&mut self, max_iterations: usize) {
         match stable_step::highest_frequency(self, max_iterations) {
             Ok(f) => {
-                let b1 = self.settings.bulk_linear;
-                let dt = 2.0 / f.omega_max * ((1.0 + b1 * b1).sqrt() - b1);
+                let dt = 2.0 / f.omega_max * self.settings.viscous_factor();
                 self.limits.global = Some(dt);
                 self.limits.global_iterations = Some(f.iterations);
                 self.limits.dt = self.settings.dt_safety * dt;

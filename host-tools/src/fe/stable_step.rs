@@ -54,7 +54,7 @@ pub const MAX_ITERATIONS: usize = 2000;
 const START_SEED: u64 = 0x5eed;
 
 /// The highest natural frequency of a model.
-#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Frequency {
     /// Highest circular frequency, rad/s.
     pub omega_max: f64,
@@ -217,7 +217,7 @@ pub fn highest_frequency<M: SolidMaterial, B: BarMaterial>(
 
 /// No global estimate: the Lanczos iteration did not settle, or found no
 /// positive `omega_max^2`.
-#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Unsettled {
     /// Iterations taken.
     pub iterations: usize,
