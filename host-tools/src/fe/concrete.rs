@@ -469,30 +469,15 @@ impl ConcreteDamagedPlasticity {
         // smaller there, so this start is left of the root and within
         // about k h^2 / (2 q^2) of it.
         let mut q = (q_tr - k).max(0.0);
-        let tol = 1e-14 * q_tr;
         for _ in 0..MAX_ITERATIONS {
             let radius = (h2 + q * q).sqrt();
-            let cube = radius * radius * radius;
             let g = q + k * q / radius - q_tr;
-            let slope = 1.0 + k * h2 / cube;
+            let slope = 1.0 + k * h2 / (radius * radius * radius);
             // max/min, not clamp: a NaN (a diverged run, reported by the solver) must not
             // panic here.
             let next = (q - g / slope).max(0.0).min(q_tr);
-            let step = next - q;
-            if step.abs() <= tol {
+            if (next - q).abs() <= 1e-14 * q_tr {
                 return next;
-            }
-            // The error left after this step is known without another
-            // iteration: g is concave with g' >= 1, so the root lies at
-            // most -g(next) right of next, and by Taylor -g(next) is at
-            // most max |g''| step^2 / 2 over the step. While q >= h / 2,
-            // |g''| = 3 k h^2 q / R^5 falls with q, so its largest value is
-            // at this iterate.
-            if 4.0 * q * q >= h2 {
-                let half_curvature = 1.5 * k * h2 * q / (cube * radius * radius);
-                if half_curvature * step * step <= tol {
-                    return next;
-                }
             }
             q = next;
         }

@@ -107,6 +107,38 @@ pub struct Damping {
     pub until: f64,
 }
 
+/// A [`Damping`] over one step of length `dt`, `a = alpha dt / 2`, as the
+/// velocity update `m (new - old) / dt = F - alpha m (old + new) / 2` of the
+/// free nodes and of the rigid top's force-driven degrees of freedom. With
+/// `a = 0` the update is the undamped one to the last bit.
+#[derive(Clone, Copy, Debug)]
+struct StepDamping {
+    a: f64,
+    keep: f64,
+    scale: f64,
+}
+
+impl StepDamping {
+    fn new(a: f64) -> Self {
+        StepDamping {
+            a,
+            keep: 1.0 - a,
+            scale: 1.0 / (1.0 + a),
+        }
+    }
+
+    /// The velocity after the step from `old`, with `dv = dt F / m`.
+    fn velocity(&self, old: f64, dv: f64) -> f64 {
+        (old * self.keep + dv) * self.scale
+    }
+
+    /// The energy a mass `m` whose mean velocity over the step has the
+    /// square `mean_sq` dissipates in it: `alpha m mean_sq dt`.
+    fn dissipated(&self, m: f64, mean_sq: f64) -> f64 {
+        2.0 * self.a * m * mean_sq
+    }
+}
+
 /// The rigid top and its reference point.
 #[derive(Clone, Debug)]
 pub struct RigidTop {
@@ -337,14 +369,10 @@ impl<M: SolidMaterial, B: BarMaterial> Solver<M, B> {
             (de, dtr, mass)
         });
         let f_int = &*f_int;
-        // Damping over the step: a = alpha dt / 2. Without it keep and
-        // scale are 1, and the update below is the undamped one to the last
-        // bit.
-        let a = match self.damping {
+        let damping = StepDamping::new(match self.damping {
             Some(d) if self.t < d.until => 0.5 * d.alpha * dt,
             _ => 0.0,
-        };
-        let (keep, scale) = (1.0 - a, 1.0 / (1.0 + a));
+        });
         let (xm, vm) = (&mut self.x, &mut self.v);
         pool.install(|| {
             xm.par_chunks_mut(NODE_CHUNK)
@@ -361,19 +389,19 @@ impl<M: SolidMaterial, B: BarMaterial> Solver<M, B> {
                         }
                         let f = f_int[n];
                         let old = *vn;
-                        // m (new - old) / dt = -f - alpha m (old + new) / 2.
                         let new = [
-                            (old[0] * keep - dt * im * f[0]) * scale,
-                            (old[1] * keep - dt * im * f[1]) * scale,
-                            (old[2] * keep - dt * im * f[2]) * scale,
+                            damping.velocity(old[0], -(dt * im * f[0])),
+                            damping.velocity(old[1], -(dt * im * f[1])),
+                            damping.velocity(old[2], -(dt * im * f[2])),
                         ];
                         let avg = [
                             0.5 * (old[0] + new[0]),
                             0.5 * (old[1] + new[1]),
                             0.5 * (old[2] + new[2]),
                         ];
-                        acc += 0.5 * mass[n] * dot(avg, avg);
-                        dis += 2.0 * a * mass[n] * dot(avg, avg);
+                        let mean_sq = dot(avg, avg);
+                        acc += 0.5 * mass[n] * mean_sq;
+                        dis += damping.dissipated(mass[n], mean_sq);
                         *vn = new;
                         *xn = [
                             xn[0] + dt * new[0],
@@ -386,7 +414,7 @@ impl<M: SolidMaterial, B: BarMaterial> Solver<M, B> {
         });
         let ke_nodes: f64 = node_energy.iter().map(|k| k[0]).sum();
         let damped: f64 = node_energy.iter().map(|k| k[1]).sum();
-        let (ke_top, work, damped_top) = self.advance_top(dt, a);
+        let (ke_top, work, damped_top) = self.advance_top(dt, damping);
         self.energy.strain += de.internal + dtr;
         self.energy.hourglass += de.hourglass;
         self.energy.viscous += de.viscous + damped + damped_top;
@@ -396,12 +424,12 @@ impl<M: SolidMaterial, B: BarMaterial> Solver<M, B> {
         self.steps += 1;
     }
 
-    /// Moves the rigid top: resultants, reference-point dynamics (damped
-    /// with `a = alpha dt / 2` in its force-driven degrees of freedom),
+    /// Moves the rigid top: resultants, reference-point dynamics (with
+    /// `damping` in its force-driven degrees of freedom),
     /// exact rigid positions of the top nodes. Returns the kinetic energy of
     /// the top nodes, the work increment at the reference point and the
     /// energy the damping dissipated.
-    fn advance_top(&mut self, dt: f64, a: f64) -> (f64, f64, f64) {
+    fn advance_top(&mut self, dt: f64, damping: StepDamping) -> (f64, f64, f64) {
         let top = &mut self.top;
         let mut col = [0.0; 6];
         let mut inertia = [0.0; 3];
@@ -425,9 +453,9 @@ impl<M: SolidMaterial, B: BarMaterial> Solver<M, B> {
             let (vel, load) = match &top.controls[k] {
                 Control::Force(h) => {
                     let g = h.value(self.t);
-                    let vel = (top.vel[k] * (1.0 - a) + dt * (g - col[k]) / mk) / (1.0 + a);
+                    let vel = damping.velocity(top.vel[k], dt * (g - col[k]) / mk);
                     let avg = 0.5 * (top.vel[k] + vel);
-                    damped += 2.0 * a * mk * avg * avg;
+                    damped += damping.dissipated(mk, avg * avg);
                     (vel, g)
                 }
                 Control::Motion(h) => {
