@@ -69,7 +69,7 @@
 //! (`F <= 0`), so the stress is always admissible and finite.
 
 use super::material::{Isotropic, SolidMaterial, Sym6};
-use super::simd::{F4, LANES};
+use super::simd::{Real, F4, LANES};
 
 /// Largest damage: the stress keeps 1% of the effective stress, so the
 /// effective stress can always be recovered from the stress.
@@ -224,16 +224,19 @@ impl ConcreteDamagedPlasticity {
     /// Effective compressive yield stress `c_c(kc)`: the ascending
     /// Vecchio-Collins parabola in terms of the plastic strain
     /// `kc = eps - sigma / E`, then `f_c`.
-    pub fn compressive_cohesion(&self, kappa_c: f64) -> f64 {
+    pub fn compressive_cohesion<T: Real>(&self, kappa_c: T) -> T {
         let fc = self.params.fc;
-        if kappa_c >= self.kappa_peak {
-            return fc;
-        }
         // kc = a eta^2 + b eta with a = f_c / E, b = eps_c0 - 2 a < 0.
         let a = fc / self.params.elastic.e;
         let b = self.eps_c0 - 2.0 * a;
-        let eta = (-b + (b * b + 4.0 * a * kappa_c.max(0.0)).sqrt()) / (2.0 * a);
-        fc * eta * (2.0 - eta)
+        let root = (kappa_c.max(T::splat(0.0)) * (4.0 * a) + b * b).sqrt();
+        let eta = (T::splat(-b) + root) / (2.0 * a);
+        let ascending = eta * fc * (T::splat(2.0) - eta);
+        T::select(
+            kappa_c.ge(T::splat(self.kappa_peak)),
+            T::splat(fc),
+            ascending,
+        )
     }
 
     /// Compressive damage `d_c(kc) = 1 - sigma/f_c` on the descending
@@ -254,89 +257,114 @@ impl ConcreteDamagedPlasticity {
 
     /// Total damage from the tensile and compressive damage and the
     /// tensile weight `r` of the effective stress.
-    fn damage(&self, damage_t: f64, damage_c: f64, r: f64) -> f64 {
-        let s_t = 1.0 - self.params.w_t * r;
-        let s_c = 1.0 - self.params.w_c * (1.0 - r);
-        let keep = (1.0 - s_t * damage_c) * (1.0 - s_c * damage_t);
-        (1.0 - keep).min(MAX_DAMAGE)
+    fn damage<T: Real>(&self, damage_t: T, damage_c: T, r: T) -> T {
+        let one = T::splat(1.0);
+        let s_t = one - r * self.params.w_t;
+        let s_c = one - (one - r) * self.params.w_c;
+        let keep = (one - s_t * damage_c) * (one - s_c * damage_t);
+        (one - keep).min(T::splat(MAX_DAMAGE))
     }
 
     /// Yield function for the largest principal effective stress `s_max`,
     /// von Mises stress `q`, first invariant
     /// `i1` and compressive cohesion `c_c`.
-    fn yield_function(&self, s_max: f64, q: f64, i1: f64, c_c: f64) -> f64 {
+    fn yield_function<T: Real>(&self, s_max: T, q: T, i1: T, c_c: T) -> T {
         let beta = c_c * self.beta_scale - (1.0 + self.alpha);
-        let tip = if s_max > 0.0 {
-            beta * s_max
-        } else {
-            self.gamma * s_max
-        };
-        (q + self.alpha * i1 + tip) * self.meridian_scale - c_c
+        let tip = T::select(s_max.gt(T::splat(0.0)), beta * s_max, s_max * self.gamma);
+        (q + i1 * self.alpha + tip) * self.meridian_scale - c_c
     }
 
     /// Advances one material point: `stress` (the damaged stress, rotated
     /// to the end of the step) by the strain increment `deps` (tensor shear
-    /// components).
+    /// components). The point is the four lanes of [`Self::update_lanes`]
+    /// at once, so material-point tests exercise the solver's own path.
     pub fn update_point(&self, state: &mut CdpState, deps: &[f64; 6], stress: &mut [f64; 6]) {
-        let recover = 1.0 / (1.0 - state.damage);
+        let mut states = [*state; LANES];
+        let d: Sym6 = std::array::from_fn(|i| F4::splat(deps[i]));
+        let mut s: Sym6 = std::array::from_fn(|i| F4::splat(stress[i]));
+        self.update_lanes(&mut states, &d, &mut s);
+        *state = states[0];
+        *stress = std::array::from_fn(|i| s[i].0[0]);
+    }
+
+    /// Advances four material points: the elastic trial, the bound that
+    /// spares most points their principal values, the principal values and
+    /// the damage are computed for the four lanes at once; a lane whose
+    /// trial lies outside the yield surface gets its own
+    /// [`Self::plastic_return`]. Each lane's result is bit for bit that of
+    /// the lane alone (test `lanes_are_independent_points`).
+    fn update_lanes(&self, state: &mut [CdpState; LANES], deps: &Sym6, stress: &mut Sym6) {
+        let lane = |state: &[CdpState; LANES], f: fn(&CdpState) -> f64| {
+            F4(std::array::from_fn(|l| f(&state[l])))
+        };
+        let one = F4::splat(1.0);
+        let recover = one / (one - lane(state, |s| s.damage));
         let tr = deps[0] + deps[1] + deps[2];
-        let mut trial = [0.0; 6];
-        for i in 0..6 {
-            let elastic = 2.0 * self.mu * deps[i] + if i < 3 { self.lambda * tr } else { 0.0 };
-            trial[i] = stress[i] * recover + elastic;
-        }
+        let trial: Sym6 = std::array::from_fn(|i| {
+            let volumetric = if i < 3 { tr * self.lambda } else { F4::ZERO };
+            stress[i] * recover + (deps[i] * (2.0 * self.mu) + volumetric)
+        });
         let m_tr = (trial[0] + trial[1] + trial[2]) / 3.0;
         let mut s_tr = trial;
         for v in s_tr.iter_mut().take(3) {
             *v -= m_tr;
         }
-        let q_tr = (1.5 * double_dot(&s_tr, &s_tr)).sqrt();
-        let c_c = self.compressive_cohesion(state.kappa_c);
+        let q_tr = (double_dot(&s_tr, &s_tr) * 1.5).sqrt();
+        let c_c = self.compressive_cohesion(lane(state, |s| s.kappa_c));
         let tol = 1e-10 * self.params.fc;
+        let i1 = m_tr * 3.0;
         // With beta >= 0, F grows with the largest principal stress, which
         // is at most m + 2q/3: below that bound the step is elastic, and an
         // undamaged point needs no principal values at all.
-        let surely_elastic = self.beta_nonnegative
-            && self.yield_function(m_tr + 2.0 * q_tr / 3.0, q_tr, 3.0 * m_tr, c_c) <= tol;
-        if surely_elastic && state.damage_t == 0.0 && state.damage_c == 0.0 {
+        let bound = self.yield_function(m_tr + q_tr * 2.0 / 3.0, q_tr, i1, c_c);
+        let surely_elastic: [bool; LANES] =
+            std::array::from_fn(|l| self.beta_nonnegative && bound.0[l] <= tol);
+        let undamaged: [bool; LANES] = std::array::from_fn(|l| {
+            surely_elastic[l] && state[l].damage_t == 0.0 && state[l].damage_c == 0.0
+        });
+        if undamaged.iter().all(|&u| u) {
             *stress = trial;
-            state.damage = 0.0;
+            for st in state.iter_mut() {
+                st.damage = 0.0;
+            }
             return;
         }
         let (d_max, d_min) = deviator_extremes(&s_tr);
-        let f_tr = if surely_elastic {
-            f64::NEG_INFINITY
-        } else {
-            self.yield_function(m_tr + d_max, q_tr, 3.0 * m_tr, c_c)
-        };
-        let (m, rho) = if f_tr <= tol {
-            (m_tr, 1.0)
-        } else {
+        let f_tr = self.yield_function(m_tr + d_max, q_tr, i1, c_c);
+        let (mut m, mut rho) = (m_tr, one);
+        for (l, st) in state.iter_mut().enumerate() {
+            if surely_elastic[l] || f_tr.0[l] <= tol {
+                continue;
+            }
             let trial = Trial {
-                m: m_tr,
-                q: q_tr,
-                d_max,
-                d_min,
-                c_c,
+                m: m_tr.0[l],
+                q: q_tr.0[l],
+                d_max: d_max.0[l],
+                d_min: d_min.0[l],
+                c_c: c_c.0[l],
             };
-            let ret = self.plastic_return(&trial, state, f_tr, tol);
+            let ret = self.plastic_return(&trial, st, f_tr.0[l], tol);
             // A hardening variable that did not move keeps its damage.
             if ret.dkt != 0.0 {
-                state.kappa_t += ret.dkt;
-                state.damage_t = self.tensile_damage(state.kappa_t);
+                st.kappa_t += ret.dkt;
+                st.damage_t = self.tensile_damage(st.kappa_t);
             }
             if ret.dkc != 0.0 {
-                state.kappa_c += ret.dkc;
-                state.damage_c = self.compressive_damage(state.kappa_c);
+                st.kappa_c += ret.dkc;
+                st.damage_c = self.compressive_damage(st.kappa_c);
             }
-            (ret.m, ret.rho)
-        };
+            (m.0[l], rho.0[l]) = (ret.m, ret.rho);
+        }
         let r = tensile_weight(&principal(m, rho, d_max, d_min));
-        state.damage = self.damage(state.damage_t, state.damage_c, r);
-        let keep = 1.0 - state.damage;
+        let damage = self.damage(lane(state, |s| s.damage_t), lane(state, |s| s.damage_c), r);
+        let keep = one - damage;
         for i in 0..6 {
-            let bar = rho * s_tr[i] + if i < 3 { m } else { 0.0 };
-            stress[i] = keep * bar;
+            let mean = if i < 3 { m } else { F4::ZERO };
+            let damaged = keep * (rho * s_tr[i] + mean);
+            stress[i] = F4::select(undamaged, trial[i], damaged);
+        }
+        for (l, st) in state.iter_mut().enumerate() {
+            st.damage = if undamaged[l] { 0.0 } else { damage.0[l] };
         }
     }
 
@@ -623,8 +651,8 @@ struct Return {
 }
 
 /// `a : b` for symmetric tensors stored `xx, yy, zz, xy, yz, zx`.
-fn double_dot(a: &[f64; 6], b: &[f64; 6]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2] + 2.0 * (a[3] * b[3] + a[4] * b[4] + a[5] * b[5])
+fn double_dot<T: Real>(a: &[T; 6], b: &[T; 6]) -> T {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2] + (a[3] * b[3] + a[4] * b[4] + a[5] * b[5]) * 2.0
 }
 
 /// Largest and smallest principal values of a deviator, from its
@@ -632,21 +660,24 @@ fn double_dot(a: &[f64; 6], b: &[f64; 6]) -> f64 {
 /// and `c` the roots of Chebyshev's cubic `4 c^3 - 3 c = cos 3 theta`,
 /// `cos 3 theta = (3 sqrt 3 / 2) J3 / J2^(3/2)`: the largest is
 /// `cos theta`, the smallest `cos(theta + 2 pi / 3)`.
-fn deviator_extremes(s: &[f64; 6]) -> (f64, f64) {
-    let j2 = 0.5 * double_dot(s, s);
-    if !(j2 > 0.0) {
-        return (0.0, 0.0);
-    }
+fn deviator_extremes<T: Real>(s: &[T; 6]) -> (T, T) {
+    let zero = T::splat(0.0);
+    let j2 = double_dot(s, s) * 0.5;
     let j3 = s[0] * (s[1] * s[2] - s[4] * s[4]) - s[3] * (s[3] * s[2] - s[4] * s[5])
         + s[5] * (s[3] * s[4] - s[1] * s[5]);
     let root = j2.sqrt();
-    let radius = 2.0 * root / 3f64.sqrt();
-    let cos3 = (1.5 * 3f64.sqrt() * j3 / (j2 * root)).clamp(-1.0, 1.0);
+    let radius = root * 2.0 / 3f64.sqrt();
+    let cos3 = (j3 * (1.5 * 3f64.sqrt()) / (j2 * root)).clamp(-1.0, 1.0);
     let cos = largest_chebyshev_root(cos3);
-    let sin = (1.0 - cos * cos).max(0.0).sqrt();
+    let sin = (T::splat(1.0) - cos * cos).max(zero).sqrt();
     // cos(theta + 2 pi / 3) without a second cosine.
-    let third = -0.5 * cos - 0.5 * 3f64.sqrt() * sin;
-    (radius * cos, radius * third)
+    let third = cos * -0.5 - sin * (0.5 * 3f64.sqrt());
+    // A zero (or NaN) deviator has no direction: both are zero.
+    let some = j2.gt(zero);
+    (
+        T::select(some, radius * cos, zero),
+        T::select(some, radius * third, zero),
+    )
 }
 
 /// `cos(acos(x) / 3)` for `x` in `[-1, 1]`: the largest root `c` in
@@ -660,16 +691,14 @@ fn deviator_extremes(s: &[f64; 6]) -> (f64, f64) {
 /// leave at most 4e-15 (test `the_chebyshev_root_is_the_cosine_of_a_third_of_the_angle`).
 /// A step that would go up (rounding at the root) or is undefined (the
 /// double root at `x = -1`, where the start is exact) is not taken.
-fn largest_chebyshev_root(x: f64) -> f64 {
-    let v = (0.5 + 0.5 * x).sqrt();
+fn largest_chebyshev_root<T: Real>(x: T) -> T {
+    let v = (x * 0.5 + 0.5).sqrt();
     let slope = 1.0 / 3f64.sqrt();
-    let mut c = 0.5 + v * (slope - (slope - 0.5) * v);
+    let mut c = v * (T::splat(slope) - v * (slope - 0.5)) + 0.5;
     for _ in 0..3 {
         let c2 = c * c;
-        let step = ((4.0 * c2 - 3.0) * c - x) / (12.0 * c2 - 3.0);
-        if step > 0.0 {
-            c -= step;
-        }
+        let step = ((c2 * 4.0 - 3.0) * c - x) / (c2 * 12.0 - 3.0);
+        c = T::select(step.gt(T::splat(0.0)), c - step, c);
     }
     c
 }
@@ -677,18 +706,17 @@ fn largest_chebyshev_root(x: f64) -> f64 {
 /// Principal values `m + rho d_i` of a stress whose deviator has the
 /// extreme principal values `d_max`, `d_min` (the middle one is
 /// `-(d_max + d_min)`), scaled by `rho`, plus the mean `m`.
-fn principal(m: f64, rho: f64, d_max: f64, d_min: f64) -> [f64; 3] {
+fn principal<T: Real>(m: T, rho: T, d_max: T, d_min: T) -> [T; 3] {
     [m + rho * d_max, m - rho * (d_max + d_min), m + rho * d_min]
 }
 
 /// Tensile weight `r = sum <s_i> / sum |s_i|` of principal stresses
 /// (Lee and Fenves 1998 eq. 15); zero for a zero stress.
-fn tensile_weight(s: &[f64; 3]) -> f64 {
-    let total: f64 = s.iter().map(|v| v.abs()).sum();
-    if !(total > 0.0) {
-        return 0.0;
-    }
-    s.iter().map(|v| v.max(0.0)).sum::<f64>() / total
+fn tensile_weight<T: Real>(s: &[T; 3]) -> T {
+    let zero = T::splat(0.0);
+    let total = s[0].abs() + s[1].abs() + s[2].abs();
+    let tension = s[0].max(zero) + s[1].max(zero) + s[2].max(zero);
+    T::select(total.gt(zero), tension / total, zero)
 }
 
 impl SolidMaterial for ConcreteDamagedPlasticity {
@@ -699,14 +727,7 @@ impl SolidMaterial for ConcreteDamagedPlasticity {
     }
 
     fn update(&self, state: &mut [CdpState; LANES], deps: &Sym6, _h: F4, stress: &mut Sym6) {
-        for (l, st) in state.iter_mut().enumerate() {
-            let d: [f64; 6] = std::array::from_fn(|i| deps[i].0[l]);
-            let mut s: [f64; 6] = std::array::from_fn(|i| stress[i].0[l]);
-            self.update_point(st, &d, &mut s);
-            for i in 0..6 {
-                stress[i].0[l] = s[i];
-            }
-        }
+        self.update_lanes(state, deps, stress);
     }
 
     fn retained_stiffness(&self, state: &[CdpState; LANES]) -> F4 {
@@ -1181,31 +1202,62 @@ mod tests {
         assert_eq!(deviator_extremes(&[0.0; 6]), (0.0, 0.0));
     }
 
+    /// Four lanes with histories of their own (random strain increments
+    /// from elastic to crushing, some lanes resting while others load) give
+    /// each lane exactly what the same history gives a point alone: no lane
+    /// takes another's path (the all-undamaged shortcut, the returns, the
+    /// damage), bit for bit.
     #[test]
-    fn lanes_match_the_scalar_update() {
+    fn lanes_are_independent_points() {
         let mat = tp91();
+        let mut rng = crate::random::Rng::seed_from_u64(91);
         let mut states = [CdpState::default(); LANES];
         let mut stress = [F4::ZERO; 6];
-        let incs = [
-            [2e-5, 0.0, 0.0, 0.0, 0.0, 0.0],
-            [-1e-4, 0.0, 0.0, 3e-5, 0.0, 0.0],
-            [0.0, 0.0, 0.0, 1e-5, 1e-5, 0.0],
-            [1e-6; 6],
-        ];
         let mut points = [Point::default(); LANES];
-        for _ in 0..50 {
+        let (mut returns, mut shortcuts) = (0, 0);
+        let mut heading = [[0.0; 6]; LANES];
+        for step in 0..4000 {
+            if step % 50 == 0 {
+                heading =
+                    std::array::from_fn(|_| std::array::from_fn(|_| 2.0 * rng.uniform() - 1.0));
+            }
+            let incs: [[f64; 6]; LANES] = std::array::from_fn(|l| {
+                // Lane l rests in one step of (l + 2); the rest load along a
+                // heading that changes every 50 steps, with some scatter.
+                if step % (l + 2) == 0 {
+                    return [0.0; 6];
+                }
+                std::array::from_fn(|i| 1e-5 * (heading[l][i] + rng.uniform() - 0.5))
+            });
             let deps: Sym6 = std::array::from_fn(|i| F4(std::array::from_fn(|l| incs[l][i])));
+            let before = states;
             mat.update(&mut states, &deps, F4::splat(0.025), &mut stress);
+            if states
+                .iter()
+                .all(|s| s.damage_t == 0.0 && s.damage_c == 0.0)
+            {
+                shortcuts += 1;
+            }
             for (l, p) in points.iter_mut().enumerate() {
                 p.step(&mat, &incs[l]);
+                if states[l].kappa_t != before[l].kappa_t || states[l].kappa_c != before[l].kappa_c
+                {
+                    returns += 1;
+                }
+                assert_eq!(states[l], p.state, "lane {l}, step {step}");
+                for i in 0..6 {
+                    assert_eq!(stress[i].0[l], p.stress[i], "lane {l}, step {step}");
+                }
             }
         }
-        for l in 0..LANES {
-            assert_eq!(states[l], points[l].state);
-            for i in 0..6 {
-                assert_eq!(stress[i].0[l], points[l].stress[i]);
-            }
-        }
+        // The histories reach every path: the shortcut, returns, cracking
+        // and crushing.
+        assert!(
+            shortcuts > 0 && returns > 1000,
+            "{shortcuts} shortcuts, {returns} returns"
+        );
+        assert!(states.iter().all(|s| s.damage_t > 0.25));
+        assert!(states.iter().any(|s| s.damage_c == MAX_DAMAGE));
         let mut out = Vec::new();
         mat.fields(&states[0], &mut out);
         assert_eq!(out.len(), mat.field_names().len());
