@@ -276,8 +276,8 @@ impl ConcreteDamagedPlasticity {
 
     /// Advances one material point: `stress` (the damaged stress, rotated
     /// to the end of the step) by the strain increment `deps` (tensor shear
-    /// components). The point is the four lanes of [`Self::update_lanes`]
-    /// at once, so material-point tests exercise the solver's own path.
+    /// components). The point runs as all four lanes of the solver's
+    /// batch update, so material-point tests exercise the solver's own path.
     pub fn update_point(&self, state: &mut CdpState, deps: &[f64; 6], stress: &mut [f64; 6]) {
         let mut states = [*state; LANES];
         let d: Sym6 = std::array::from_fn(|i| F4::splat(deps[i]));
