@@ -13,19 +13,17 @@
 //! nodes; its rotations are composed exactly (Rodrigues), so the top stays
 //! rigid at any twist.
 //!
-//! Determinism: elements write their nodal forces into their own slots and
-//! energies into fixed chunks; every node then sums its slots in a fixed
-//! order. The result does not depend on the number of threads.
+//! Determinism: the hexahedra add their nodal forces layer by layer, in a
+//! fixed order ([`super::layers`]), with energies per layer; every node then
+//! adds its share of the truss forces in a fixed order. The result does not
+//! depend on the number of threads.
 
 use super::hex8::{self, HexEnergy};
 use super::history::History;
 use super::material::{BarMaterial, SolidMaterial};
 use super::model::Model;
-use super::simd::LANES;
 use rayon::prelude::*;
 
-/// Batches per parallel work item.
-const BATCH_CHUNK: usize = 16;
 /// Nodes per parallel work item.
 const NODE_CHUNK: usize = 512;
 /// Trusses per parallel work item.
@@ -178,7 +176,6 @@ pub struct Solver<M: SolidMaterial, B: BarMaterial> {
     /// Internal nodal forces at the last step, N.
     pub f_int: Vec<[f64; 3]>,
     inv_mass: Vec<f64>,
-    hex_f: Vec<[f64; 3]>,
     hex_e: Vec<HexEnergy>,
     truss_f: Vec<[f64; 3]>,
     truss_e: Vec<f64>,
@@ -225,15 +222,13 @@ impl<M: SolidMaterial, B: BarMaterial> Solver<M, B> {
             .map(|&i| sub(x[i as usize], centre))
             .collect();
         let mass = top_nodes.iter().map(|&i| model.mass[i as usize]).sum();
-        let n_el_slots = model.batches.len() * 8 * LANES;
         let nt = model.embedding.trusses.len();
         let np = model.embedding.points.len();
         let pool = rayon::ThreadPoolBuilder::new()
             .num_threads(threads.max(1))
             .build()?;
         Ok(Solver {
-            hex_f: vec![[0.0; 3]; n_el_slots],
-            hex_e: vec![HexEnergy::default(); model.batches.len().div_ceil(BATCH_CHUNK)],
+            hex_e: vec![HexEnergy::default(); model.layers.count],
             truss_f: vec![[0.0; 3]; 2 * nt],
             truss_e: vec![0.0; nt.div_ceil(TRUSS_CHUNK)],
             px: model.embedding.positions.clone(),
@@ -276,7 +271,6 @@ impl<M: SolidMaterial, B: BarMaterial> Solver<M, B> {
             v,
             f_int,
             inv_mass,
-            hex_f,
             hex_e,
             truss_f,
             truss_e,
@@ -299,25 +293,20 @@ impl<M: SolidMaterial, B: BarMaterial> Solver<M, B> {
                     *pv = pt.interpolate(v);
                 });
 
-            // Hexahedra.
+            // Hexahedra, their forces added to the nodes layer by layer.
             let mat = &model.solid;
-            let lanes = LANES;
-            model
-                .batches
-                .par_chunks_mut(BATCH_CHUNK)
-                .zip(hex_f.par_chunks_mut(BATCH_CHUNK * 8 * lanes))
-                .zip(hex_e.par_iter_mut())
-                .for_each(|((bs, fs), e)| {
-                    let mut acc = HexEnergy::default();
-                    for (b, f) in bs.iter_mut().zip(fs.chunks_mut(8 * lanes)) {
-                        let (forces, en) = hex8::step(b, mat, x, v, dt);
-                        hex8::scatter(&forces, b.len, f);
-                        acc.internal += en.internal;
-                        acc.hourglass += en.hourglass;
-                        acc.viscous += en.viscous;
-                    }
-                    *e = acc;
-                });
+            hex_e.fill(HexEnergy::default());
+            model.layers.add_forces(
+                &mut model.batches,
+                f_int,
+                hex_e,
+                |b, acc: &mut HexEnergy, forces| {
+                    let en = hex8::step(b, mat, x, v, dt, forces);
+                    acc.internal += en.internal;
+                    acc.hourglass += en.hourglass;
+                    acc.viscous += en.viscous;
+                },
+            );
 
             // Trusses.
             let trusses = &model.embedding.trusses;
@@ -348,8 +337,8 @@ impl<M: SolidMaterial, B: BarMaterial> Solver<M, B> {
                     *e = acc;
                 });
 
-            // Nodal forces, free-node velocities and positions.
-            let (hex_f, truss_f) = (&*hex_f, &*truss_f);
+            // The bars' share of the nodal forces.
+            let truss_f = &*truss_f;
             let assembly = &model.assembly;
             let mass = &model.mass;
             f_int
@@ -357,7 +346,7 @@ impl<M: SolidMaterial, B: BarMaterial> Solver<M, B> {
                 .enumerate()
                 .for_each(|(c, fs)| {
                     for (k, f) in fs.iter_mut().enumerate() {
-                        *f = assembly.force(hex_f, truss_f, c * NODE_CHUNK + k);
+                        *f = assembly.with_trusses(*f, truss_f, c * NODE_CHUNK + k);
                     }
                 });
             let de = hex_e.iter().fold(HexEnergy::default(), |a, e| HexEnergy {

@@ -9,8 +9,9 @@
 //! * [`concrete`], [`steel`]: concrete damaged plasticity and hardening
 //!   steel (thesis 2.2), tested at the material point.
 //! * [`model`], [`explicit`]: assembly, time step, mass scaling, the
-//!   central-difference solver with the rigid top; [`stable_step`]: the
-//!   global stable step from the model's highest frequency.
+//!   central-difference solver with the rigid top; [`layers`]: nodal forces
+//!   by element layers; [`stable_step`]: the global stable step from the
+//!   model's highest frequency.
 //! * [`quasi_static`], [`output`], [`run`]: energy checks, CSV and VTK
 //!   output, a whole analysis.
 //! * [`section`]: shear stress across the mid-height section (thesis Figs
@@ -30,6 +31,7 @@ pub mod concrete;
 pub mod explicit;
 pub mod hex8;
 pub mod history;
+pub mod layers;
 pub mod material;
 pub mod mesh;
 pub mod model;

@@ -1,9 +1,10 @@
-//! The assembled model: element batches with their constants, embedded
-//! trusses, lumped nodal masses, the stable time step with optional mass
-//! scaling, and the node-to-contribution tables that make the assembly of
-//! nodal forces deterministic.
+//! The assembled model: element batches with their constants, layer by
+//! layer ([`Layers`]), embedded trusses, lumped nodal masses, the stable
+//! time step with optional mass scaling, and the node-to-truss tables that
+//! keep the bars' share of the nodal forces deterministic.
 
 use super::hex8::{self, HexBatch};
+use super::layers::Layers;
 use super::material::{BarMaterial, SolidMaterial};
 use super::mesh::Mesh;
 use super::rebar::{BarSet, Embedding};
@@ -113,27 +114,22 @@ impl<T: Copy> Rows<T> {
     }
 }
 
-/// The node-to-contribution tables of the force assembly.
+/// The bars' share of the nodal forces: each truss end's force goes to the
+/// nodes of its host hexahedron with the end's interpolation weights.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Assembly {
-    /// Hexahedron force slots (`8 e + a`) of each node.
-    pub hex: Rows<u32>,
     /// Truss force slots (`2 t + end`) and weights of each node.
     pub truss: Rows<(u32, f64)>,
 }
 
 impl Assembly {
-    /// The internal force on node `n`: the sum of its hexahedra's slots in
-    /// `hex_f` (laid out as by [`hex8::scatter`]) and of its share of the
-    /// truss-end forces in `truss_f` (`2 t + end`), in the fixed order of
-    /// the rows, so that the sum does not depend on threads.
+    /// `f` (the force on node `n` from the hexahedra, [`Layers::add_forces`])
+    /// plus node `n`'s share of the truss-end forces in `truss_f`
+    /// (`2 t + end`), in the fixed order of its row, so that the sum does
+    /// not depend on threads.
     #[inline(always)]
-    pub fn force(&self, hex_f: &[[f64; 3]], truss_f: &[[f64; 3]], n: usize) -> [f64; 3] {
-        let mut s = [0.0; 3];
-        for &slot in self.hex.row(n) {
-            let g = hex_f[slot as usize];
-            s = [s[0] + g[0], s[1] + g[1], s[2] + g[2]];
-        }
+    pub fn with_trusses(&self, f: [f64; 3], truss_f: &[[f64; 3]], n: usize) -> [f64; 3] {
+        let mut s = f;
         for &(slot, w) in self.truss.row(n) {
             let g = truss_f[slot as usize];
             s = [s[0] + w * g[0], s[1] + w * g[1], s[2] + w * g[2]];
@@ -172,8 +168,10 @@ pub struct Model<M: SolidMaterial, B: BarMaterial> {
     pub bar_materials: Vec<B>,
     /// Names of the bar sets.
     pub bar_names: Vec<String>,
-    /// Hexahedra in batches of [`LANES`].
+    /// Hexahedra in batches of [`LANES`], layer by layer ([`Layers`]).
     pub batches: Vec<HexBatch<M::State>>,
+    /// How the batches and nodes fall into layers.
+    pub layers: Layers,
     /// The embedded bars.
     pub embedding: Embedding,
     /// Truss stresses and histories.
@@ -215,9 +213,14 @@ impl<M: SolidMaterial, B: BarMaterial> Model<M, B> {
         let mut added = 0.0;
         let mut dt_hex = f64::INFINITY;
         let mut dt_min = f64::INFINITY;
-        let n_el = mesh.hexes.len();
-        let mut batches = Vec::with_capacity(n_el.div_ceil(LANES));
-        for chunk in mesh.hexes.chunks(LANES) {
+        let per_layer = mesh.section.quads.len();
+        let layers = Layers::new(mesh.layers, per_layer, mesh.section.nodes.len());
+        let mut batches = Vec::with_capacity(layers.count * layers.batches);
+        for chunk in mesh
+            .hexes
+            .chunks(per_layer)
+            .flat_map(|layer| layer.chunks(LANES))
+        {
             let mut nodes = [[0u32; LANES]; 8];
             let mut hg_k = F4::ZERO;
             let mut le = F4::ZERO;
@@ -291,12 +294,6 @@ impl<M: SolidMaterial, B: BarMaterial> Model<M, B> {
                 }
             }
         }
-        let mut hex_items = Vec::with_capacity(8 * n_el);
-        for (e, hex) in mesh.hexes.iter().enumerate() {
-            for (a, &n) in hex.iter().enumerate() {
-                hex_items.push((n, (8 * e + a) as u32));
-            }
-        }
         let mut truss_items = Vec::new();
         for (t, tr) in embedding.trusses.iter().enumerate() {
             for (end, &p) in tr.ends.iter().enumerate() {
@@ -311,9 +308,9 @@ impl<M: SolidMaterial, B: BarMaterial> Model<M, B> {
         let truss_state = vec![TrussState::default(); embedding.trusses.len()];
         let mut model = Model {
             assembly: Assembly {
-                hex: Rows::build(n_nodes, &hex_items),
                 truss: Rows::build(n_nodes, &truss_items),
             },
+            layers,
             mesh,
             solid,
             bar_materials,

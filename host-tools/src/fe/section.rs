@@ -26,7 +26,6 @@
 use super::explicit::Solver;
 use super::material::{BarMaterial, SolidMaterial};
 use super::mesh::Mesh;
-use super::simd::LANES;
 use super::specimen::Shape;
 use crate::report::{Axis, Figure, Panel, Series};
 use std::fmt::Write as _;
@@ -125,7 +124,8 @@ impl Cut {
             .iter()
             .zip(&self.centroid)
             .map(|(&e, &[x, y])| {
-                let (b, l) = (&batches[e / LANES], e % LANES);
+                let (b, l) = s.model.layers.lane_of(e);
+                let b = &batches[b];
                 // Stress components: xx, yy, zz, xy, yz, zx.
                 let (tyz, txz) = (b.stress[4].0[l], b.stress[5].0[l]);
                 let r = x.hypot(y);

@@ -68,7 +68,6 @@ struct Stiffness<'a, M: SolidMaterial, B: BarMaterial> {
     model: &'a Model<M, B>,
     elastic: Elastic,
     batches: Vec<HexBatch<()>>,
-    hex_f: Vec<[f64; 3]>,
     truss_f: Vec<[f64; 3]>,
 }
 
@@ -94,7 +93,6 @@ impl<'a, M: SolidMaterial, B: BarMaterial> Stiffness<'a, M, B> {
             .collect::<Vec<_>>();
         Stiffness {
             elastic: Elastic::new(model.solid.initial()),
-            hex_f: vec![[0.0; 3]; batches.len() * 8 * LANES],
             truss_f: vec![[0.0; 3]; 2 * model.embedding.trusses.len()],
             batches,
             model,
@@ -109,14 +107,13 @@ impl<'a, M: SolidMaterial, B: BarMaterial> Stiffness<'a, M, B> {
         let model = self.model;
         let x = &model.mesh.nodes;
         let elastic = &self.elastic;
-        self.batches
-            .par_iter_mut()
-            .zip(self.hex_f.par_chunks_mut(8 * LANES))
-            .for_each(|(b, f)| {
+        let mut energy = vec![(); model.layers.count];
+        model
+            .layers
+            .add_forces(&mut self.batches, out, &mut energy, |b, _, forces| {
                 b.stress = [F4::ZERO; 6];
                 b.hg = [[F4::ZERO; 4]; 3];
-                let (forces, _) = hex8::step(b, elastic, x, d, 1.0);
-                hex8::scatter(&forces, b.len, f);
+                hex8::step(b, elastic, x, d, 1.0, forces);
             });
         let emb = &model.embedding;
         self.truss_f
@@ -132,11 +129,11 @@ impl<'a, M: SolidMaterial, B: BarMaterial> Stiffness<'a, M, B> {
                 f[0] = std::array::from_fn(|i| -n * axis[i]);
                 f[1] = std::array::from_fn(|i| n * axis[i]);
             });
-        let (hex_f, truss_f) = (&self.hex_f, &self.truss_f);
+        let truss_f = &self.truss_f;
         let assembly = &model.assembly;
         out.par_iter_mut()
             .enumerate()
-            .for_each(|(n, o)| *o = assembly.force(hex_f, truss_f, n));
+            .for_each(|(n, o)| *o = assembly.with_trusses(*o, truss_f, n));
     }
 }
 
