@@ -295,7 +295,6 @@ impl<M: SolidMaterial, B: BarMaterial> Solver<M, B> {
 
             // Hexahedra, their forces added to the nodes layer by layer.
             let mat = &model.solid;
-            hex_e.fill(HexEnergy::default());
             model.layers.add_forces(
                 &mut model.batches,
                 f_int,

@@ -52,9 +52,9 @@ impl Layers {
 
     /// Sets `f` to the sum of the nodal forces `element` writes into its
     /// third argument for every batch (`f[n]` is the force on node `n`), in
-    /// the fixed order of the module docs; `energy[k]` accumulates what
-    /// `element` adds for the batches of layer `k`, through its second
-    /// argument.
+    /// the fixed order of the module docs, and `energy[k]` to what
+    /// `element` adds, through its second argument, for the batches of
+    /// layer `k` (from `E::default()`).
     pub fn add_forces<S, E>(
         &self,
         batches: &mut [HexBatch<S>],
@@ -63,13 +63,14 @@ impl Layers {
         element: impl Fn(&mut HexBatch<S>, &mut E, &mut HexForces) + Sync,
     ) where
         S: Send,
-        E: Send,
+        E: Send + Default,
     {
         debug_assert_eq!(batches.len(), self.count * self.batches);
         debug_assert_eq!(f.len(), (self.count + 1) * self.nodes);
         debug_assert_eq!(energy.len(), self.count);
         f.par_chunks_mut(self.nodes)
             .for_each(|layer| layer.fill([0.0; 3]));
+        energy.fill_with(E::default);
         for parity in 0..2 {
             batches[parity * self.batches..]
                 .par_chunks_mut(2 * self.batches)
@@ -184,7 +185,7 @@ mod tests {
                 .unwrap();
             let mut batches = make();
             let mut f = vec![[f64::NAN; 3]; (layers + 1) * np];
-            let mut energy = vec![0.0; layers];
+            let mut energy = vec![f64::NAN; layers];
             pool.install(|| lay.add_forces(&mut batches, &mut f, &mut energy, element));
             assert_eq!(f, want);
             // Layer k holds elements 5k + 1 ..= 5k + 5.

@@ -6,7 +6,7 @@
 //! two SSE2 operations per `F4` on a baseline x86-64 build, one AVX operation
 //! when the build targets a CPU that has it. The code stays safe and portable.
 
-use std::ops::{Add, AddAssign, Div, Mul, MulAssign, Neg, Sub, SubAssign};
+use std::ops::{Add, AddAssign, Div, DivAssign, Mul, MulAssign, Neg, Sub, SubAssign};
 
 /// Arithmetic shared by one `f64` and a batch of four ([`F4`]), so that a
 /// formula of a material is written once and serves both the scalar
@@ -229,30 +229,7 @@ macro_rules! lane_op {
 lane_op!(Add, add, +, AddAssign, add_assign);
 lane_op!(Sub, sub, -, SubAssign, sub_assign);
 lane_op!(Mul, mul, *, MulAssign, mul_assign);
-
-impl Div for F4 {
-    type Output = F4;
-    #[inline(always)]
-    fn div(self, o: F4) -> F4 {
-        let mut r = [0.0; LANES];
-        for (l, r) in r.iter_mut().enumerate() {
-            *r = self.0[l] / o.0[l];
-        }
-        F4(r)
-    }
-}
-
-impl Div<f64> for F4 {
-    type Output = F4;
-    #[inline(always)]
-    fn div(self, o: f64) -> F4 {
-        let mut r = [0.0; LANES];
-        for (l, r) in r.iter_mut().enumerate() {
-            *r = self.0[l] / o;
-        }
-        F4(r)
-    }
-}
+lane_op!(Div, div, /, DivAssign, div_assign);
 
 impl Neg for F4 {
     type Output = F4;
