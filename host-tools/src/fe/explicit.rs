@@ -281,7 +281,7 @@ impl<M: SolidMaterial, B: BarMaterial> Solver<M, B> {
             ..
         } = self;
         let (x, v) = (&*x, &*v);
-        let (de, dtr, mass) = pool.install(|| {
+        let (de, dtr) = pool.install(|| {
             // Embedded points follow their hosts.
             let points = &model.embedding.points;
             px.par_iter_mut()
@@ -336,46 +336,39 @@ impl<M: SolidMaterial, B: BarMaterial> Solver<M, B> {
                     *e = acc;
                 });
 
-            // The bars' share of the nodal forces.
-            let truss_f = &*truss_f;
-            let assembly = &model.assembly;
-            let mass = &model.mass;
-            f_int
-                .par_chunks_mut(NODE_CHUNK)
-                .enumerate()
-                .for_each(|(c, fs)| {
-                    for (k, f) in fs.iter_mut().enumerate() {
-                        *f = assembly.with_trusses(*f, truss_f, c * NODE_CHUNK + k);
-                    }
-                });
             let de = hex_e.iter().fold(HexEnergy::default(), |a, e| HexEnergy {
                 internal: a.internal + e.internal,
                 hourglass: a.hourglass + e.hourglass,
                 viscous: a.viscous + e.viscous,
             });
             let dtr: f64 = truss_e.iter().sum();
-            (de, dtr, mass)
+            (de, dtr)
         });
-        let f_int = &*f_int;
         let damping = StepDamping::new(match self.damping {
             Some(d) if self.t < d.until => 0.5 * d.alpha * dt,
             _ => 0.0,
         });
         let (xm, vm) = (&mut self.x, &mut self.v);
+        let (truss_f, assembly, mass) = (&*truss_f, &model.assembly, &model.mass);
         pool.install(|| {
             xm.par_chunks_mut(NODE_CHUNK)
                 .zip(vm.par_chunks_mut(NODE_CHUNK))
+                .zip(f_int.par_chunks_mut(NODE_CHUNK))
                 .zip(node_energy.par_iter_mut())
                 .enumerate()
-                .for_each(|(c, ((xs, vs), out))| {
+                .for_each(|(c, (((xs, vs), fs), out))| {
                     let (mut acc, mut dis) = (0.0, 0.0);
-                    for (k, (xn, vn)) in xs.iter_mut().zip(vs.iter_mut()).enumerate() {
+                    for (k, ((xn, vn), fi)) in xs.iter_mut().zip(vs.iter_mut()).zip(fs).enumerate()
+                    {
                         let n = c * NODE_CHUNK + k;
+                        // The bars' share of the nodal forces, added here
+                        // rather than in a pass of its own over the nodes.
+                        let f = assembly.with_trusses(*fi, truss_f, n);
+                        *fi = f;
                         let im = inv_mass[n];
                         if im == 0.0 {
                             continue;
                         }
-                        let f = f_int[n];
                         let old = *vn;
                         let new = [
                             damping.velocity(old[0], -(dt * im * f[0])),
