@@ -113,6 +113,26 @@ impl<S: Scalar> BoucWen<S> {
         if n <= S::ZERO {
             return Err(ParamError::new("n", Rule::NotPositive));
         }
+        // Zu^n = 1/(beta + gamma) is the value |z|^n approaches on loading
+        // (eq. 3.12), and `r = |beta - gamma| Zu^n` the rate of |z|^n's term
+        // on a reversal there: dz/du = 1 + r, the largest hysteretic
+        // stiffness `k0 (1 + r)`, and `n r` the scale of the series' first
+        // sub-step (`series.rs`). An arithmetic that cannot hold them
+        // (Q15.16, when gamma nearly cancels beta) would saturate on the way
+        // to Zu or at the reversal. Found by proptest (`tests/bwbn_series.rs`):
+        // beta 0.05, gamma -0.04999 (Zu^n = 65,536), Q15.16 steps refused at
+        // z = 19 of Zu = 22.9 after small increments and 41% off after one
+        // long one; beta 18.94, gamma -18.94 (n r = 43,000), a reversal at
+        // Zu refused.
+        let sum = beta + gamma;
+        if sum > S::ZERO {
+            let zu_n = S::ONE / sum;
+            let r = (beta - gamma).abs() * zu_n;
+            let derived = [zu_n, k0 * (S::ONE + r), S::ONE + n * r];
+            if !derived.iter().all(|v| v.is_finite()) {
+                return Err(ParamError::new("gamma", Rule::DerivedOverflow));
+            }
+        }
         Ok(p)
     }
 

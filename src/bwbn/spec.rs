@@ -74,7 +74,10 @@ pub enum Rule {
     /// inside `[0, energy_limit]`, which reverses the hysteretic rate.
     PinchingReversesRate,
     /// A factor derived from this parameter and the others (for asymmetry the
-    /// strength factors `(1 ± a)^-n`) is too large for the arithmetic.
+    /// strength factors `(1 ± a)^-n`; for plain Bouc-Wen `Zu^n = 1/(beta +
+    /// gamma)`, the value of `|z|^n` at the asymptote, and the stiffness
+    /// `k0 (1 + |beta - gamma| Zu^n)` of a reversal there) is too large for
+    /// the arithmetic.
     DerivedOverflow,
     /// A required parameter is missing.
     Missing,
@@ -99,7 +102,7 @@ impl Rule {
                 "makes zeta1 exceed 1 within [0, energy_limit], so h(z) (eq. 3.9) turns negative"
             }
             Rule::DerivedOverflow => {
-                "makes a factor derived from it (for asymmetry (1 ± a)^-n) too large for the arithmetic"
+                "makes a factor derived from it (for asymmetry (1 ± a)^-n, for plain Bouc-Wen Zu^n = 1/(beta + gamma) or the stiffness of a reversal at Zu) too large for the arithmetic"
             }
             Rule::Missing => "is required but missing",
             Rule::Unknown => "is not a parameter of this model",
