@@ -81,10 +81,11 @@ impl Layers {
                     // A node layer is zeroed by the first element layer to
                     // reach it, while the layer's nodes are about to be in
                     // cache anyway: the even element layers reach all but
-                    // the top node layer of an even count.
+                    // the top node layer of an even count, which only the
+                    // last element layer, an odd one, reaches.
                     if parity == 0 {
                         nodes.fill([0.0; 3]);
-                    } else if lower + 1 == self.count && self.count % 2 == 0 {
+                    } else if lower + 1 == self.count {
                         nodes[self.nodes..].fill([0.0; 3]);
                     }
                     let mut forces = [[F4::ZERO; 8]; 3];
