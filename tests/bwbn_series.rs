@@ -279,9 +279,11 @@ proptest::proptest! {
     /// last place is then 1.5e-4 of Zu; at Zu = 0.05 the rounding of z alone
     /// is 3e-4 of it) to 100, peak force below 8,000 and `k0 Zu |u|`, which
     /// bounds the energy, below 30,000; a set whose `Zu^n = 1/(beta + gamma)`
-    /// Q15.16 cannot hold is refused when built (found here: beta + gamma one
-    /// unit in the last place, `|z|^n` saturated before z reached Zu, and a
-    /// long increment came out 41% off). Found here too: a Taylor sub-step in Q15.16
+    /// or stiffness of a reversal at Zu Q15.16 cannot hold is refused when
+    /// built (found here: beta + gamma one unit in the last place, `|z|^n`
+    /// saturated before z reached Zu, and a long increment came out 41% off;
+    /// beta 18.94 against gamma -18.94, a reversal at Zu refused). Found here
+    /// too: a Taylor sub-step in Q15.16
     /// took coefficients below the last place, read as zero, as converged,
     /// 2% of Zu off; coefficients scaled by x0 alone overflowed on steep
     /// unloading from Zu; and `len * g / x0` saturated on long increments.
@@ -304,8 +306,9 @@ proptest::proptest! {
         let peak = reference.iter().fold(0.0f64, |m, r| m.max(r[0].abs()));
         let reach = h.iter().fold(0.0f64, |m, u| m.max(u.abs()));
         proptest::prop_assume!((0.1..=100.0).contains(&scale) && peak < 8000.0 && k0 * scale * reach < 30_000.0);
-        // Sets whose Zu^n = 1/(beta + gamma) Q15.16 cannot hold are refused
-        // when built (`bwbn_params.rs`, `zu_to_the_n_beyond_the_arithmetic_is_refused`).
+        // Sets whose Zu^n = 1/(beta + gamma) or reversal stiffness at Zu
+        // Q15.16 cannot hold are refused when built (`bwbn_params.rs`,
+        // `zu_to_the_n_beyond_the_arithmetic_is_refused`).
         let fixed = [k0, alpha, n, beta, gamma].map(Fixed::from_f64);
         proptest::prop_assume!(BoucWen::new(fixed[0], fixed[1], fixed[2], fixed[3], fixed[4]).is_ok());
         fn check<S: Scalar>(v: [f64; 5], h: &[f64], reference: &[[f64; 3]], bound: f64) -> Result<(), proptest::test_runner::TestCaseError> {
