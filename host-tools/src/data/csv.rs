@@ -4,6 +4,9 @@
 //! Rules, in order:
 //! 1. Lines starting with `#` (after white space) are comments, kept in the
 //!    record; blank lines are skipped. A UTF-8 byte-order mark is ignored.
+//!    Below the header, a `#` line with as many fields as the header is a data
+//!    row (a spreadsheet's `#N/A` or `#DIV/0!`, refused as not a number at its
+//!    line), and a comment there is reported ([`Notice::CommentsAmongRows`]).
 //! 2. The first other line is the header. Its fields are split on `,`; see
 //!    [`columns`](super::columns) for how names and units are read.
 //! 3. If the next line has no number and at least one known unit, it is a
@@ -515,13 +518,28 @@ pub(crate) fn parse(file: &Path, text: &str, options: &ReadOptions) -> Result<Re
     let text = text.strip_prefix('\u{feff}').unwrap_or(text);
     let mut comments = Vec::new();
     let mut content: Vec<(usize, &str)> = Vec::new();
+    // Lines starting with `#` below the header: data rows when they have the header's
+    // fields (a spreadsheet's `#N/A` or `#DIV/0!` in the first column, which the number
+    // check then refuses at its line), otherwise comments, reported as such.
+    let mut width_below = None;
+    let mut comments_among_rows = Vec::new();
     let mut n_lines = 0;
     for (k, line) in text.lines().enumerate() {
         n_lines = k + 1;
         let t = line.trim();
         if let Some(c) = t.strip_prefix('#') {
-            comments.push(c.trim().to_string());
+            if width_below.is_some_and(|w| w > 1 && line.split(',').count() == w) {
+                content.push((k + 1, line));
+            } else {
+                if width_below.is_some() {
+                    comments_among_rows.push(k + 1);
+                }
+                comments.push(c.trim().to_string());
+            }
         } else if !t.is_empty() {
+            if width_below.is_none() {
+                width_below = Some(line.split(',').count());
+            }
             content.push((k + 1, line));
         }
     }
@@ -658,6 +676,11 @@ pub(crate) fn parse(file: &Path, text: &str, options: &ReadOptions) -> Result<Re
     };
     if !ignored.is_empty() {
         notices.push(Notice::IgnoredColumns { columns: ignored });
+    }
+    if !comments_among_rows.is_empty() {
+        notices.push(Notice::CommentsAmongRows {
+            lines: comments_among_rows,
+        });
     }
     Ok(Record::new(
         file,

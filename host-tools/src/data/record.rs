@@ -118,6 +118,11 @@ pub enum Notice {
         /// The row as written.
         text: String,
     },
+    /// Comment lines between data rows (CSV), skipped.
+    CommentsAmongRows {
+        /// Their line numbers.
+        lines: Vec<usize>,
+    },
     /// A step or index column was checked to increase and used only as the row
     /// order.
     StepColumn {
@@ -153,6 +158,19 @@ impl fmt::Display for Notice {
             }
             Notice::SkippedRow { at, text } => {
                 write!(f, "row at {at} skipped as asked: '{text}'")
+            }
+            Notice::CommentsAmongRows { lines } => {
+                let shown: Vec<String> = lines.iter().take(5).map(|l| l.to_string()).collect();
+                let more = if lines.len() > 5 {
+                    format!(" and {} more", lines.len() - 5)
+                } else {
+                    String::new()
+                };
+                write!(
+                    f,
+                    "comment lines among the data rows skipped (line {}{more})",
+                    shown.join(", ")
+                )
             }
             Notice::StepColumn { column } => write!(
                 f,

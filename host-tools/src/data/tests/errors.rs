@@ -276,6 +276,35 @@ fn skipped_rows_are_reported() {
     );
 }
 
+/// A spreadsheet's error value (`#N/A`, `#DIV/0!`) starts a data row with `#`: the row has the
+/// header's fields, so it is read as data and refused at its line, not dropped as a comment (found
+/// by review: 400 of 401 rows read, no word). A comment among the rows is skipped and reported.
+#[test]
+fn a_row_starting_with_a_hash_is_data_and_a_comment_among_rows_is_reported() {
+    let header = "# test 7\ntime (s),displacement (mm),force (kN)\n0,0,0\n";
+    for value in ["#N/A", "#DIV/0!"] {
+        let text = format!("{header}{value},0.1,2\n2,0.2,3\n");
+        assert_eq!(
+            csv_error("na.csv", &text, &ReadOptions::default()),
+            format!("na.csv:4:1: expected a number for column 'time (s)', found '{value}'")
+        );
+    }
+    let text = format!("{header}# actuator re-zeroed\n1,0.1,2\n# end of day 1\n2,0.2,3\n");
+    let r = read_str("c.csv", &text, Format::Csv, &ReadOptions::default()).unwrap();
+    assert_eq!(r.displacement().unwrap(), &[0.0, 0.1, 0.2]);
+    assert_eq!(
+        r.notices(),
+        &[Notice::CommentsAmongRows { lines: vec![4, 6] }]
+    );
+    assert_eq!(
+        r.notices()[0].to_string(),
+        "comment lines among the data rows skipped (line 4, 6)"
+    );
+    // Comment lines above the header are the file's own, with no notice.
+    let r = read_str("h.csv", header, Format::Csv, &ReadOptions::default()).unwrap();
+    assert!(r.notices().is_empty());
+}
+
 #[test]
 fn overrides_and_conventions() {
     // A unit given in the options replaces the file's, with a notice.
