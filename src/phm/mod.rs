@@ -285,7 +285,15 @@ impl<S: Scalar, const N: usize, const M: usize> Phm<S, N, M> {
             let c = self.params.coefficients();
             let x = signed(d, st.twist);
             let theta_c = self.params.curves()[from.index()].cracking()[0];
-            levels[from.index()].count_unloading(x, t, theta_c, c.0[rules::idx::CYCLE_BAND]);
+            let on_path = |xm: S| {
+                if current.branch.kind == Kind::Envelope || !(xm < current.branch.contact) {
+                    self.bound(d).bound(xm).0
+                } else {
+                    current.branch.torque_at(xm)
+                }
+            };
+            let band = c.0[rules::idx::CYCLE_BAND];
+            levels[from.index()].count_unloading((x, t), on_path, theta_c, band);
             rules::unloading_branch(c, self.params.curves(), from, [x, t], &levels)
         } else {
             // Reloading before zero torque: back to where the unloading began.
@@ -433,6 +441,9 @@ impl<S: Scalar, const N: usize, const M: usize> Phm<S, N, M> {
             } else {
                 if dir != st.dir {
                     self.reverse(&mut st, &mut pending, dir);
+                    if !self.slots[st.slot as usize].branch.is_defined() {
+                        return Err(StepError::NonFiniteState);
+                    }
                 }
                 self.walk(&mut st, &mut pending, theta);
             }

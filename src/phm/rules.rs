@@ -205,13 +205,23 @@ impl<S: Scalar> Level<S> {
     /// for an unloading within `(1 +/- band) theta_m`. Gaps G3/G4: an
     /// unloading below the band is an inner cycle and changes nothing;
     /// within the band `theta_m` becomes the larger of the two twists and
-    /// `T_m` the torque of this unloading. Nothing is counted before the
+    /// `T_m` the torque of the path there: this unloading's `t` when it is
+    /// at or past `theta_m`, else `at_theta_m()`, the torque at `theta_m` of
+    /// the branch it left (taking `t`, a torque at a smaller twist, broke
+    /// the pair: an inner cycle reversed at 7.60 of `theta_m = 8` took the
+    /// next peak 14% below one reversed at 7.59; found by review). Nothing is counted before the
     /// direction has cracked (rule 1 of §5.2.2 governs), nor from a twist
     /// below cracking (reached only on the torque cap below cracking, gap
     /// G6), so that `theta_m > theta_c` always holds where eqs 4-6 use it.
     /// n stops at [`MAX_CYCLES`]: a further unloading within the band still
     /// updates `theta_m` and `T_m`.
-    pub(crate) fn count_unloading(&mut self, x: S, t: S, theta_c: S, band: S) {
+    pub(crate) fn count_unloading(
+        &mut self,
+        (x, t): (S, S),
+        at_theta_m: impl FnOnce(S) -> S,
+        theta_c: S,
+        band: S,
+    ) {
         if !(self.cracked && x > theta_c) {
             return;
         }
@@ -226,8 +236,12 @@ impl<S: Scalar> Level<S> {
             };
         } else if !(x < lo) {
             self.cycles = self.cycles.saturating_add(1).min(MAX_CYCLES);
-            self.twist = self.twist.max(x);
-            self.torque = t;
+            if x < self.twist {
+                self.torque = at_theta_m(self.twist);
+            } else {
+                self.twist = x;
+                self.torque = t;
+            }
         }
     }
 }
@@ -377,28 +391,31 @@ mod tests {
     #[test]
     fn cycle_counter() {
         let band = 0.05;
+        // The torque at theta_m of the branch an unloading below theta_m
+        // leaves.
+        let path = |x: f64| 1.5 * x;
         let mut l = Level::<f64> {
             cracked: true,
             ..Level::default()
         };
-        l.count_unloading(4.0, 6.0, 1.0, band);
+        l.count_unloading((4.0, 6.0), path, 1.0, band);
         assert_eq!((l.twist, l.torque, l.cycles), (4.0, 6.0, 1));
-        l.count_unloading(4.1, 5.8, 1.0, band);
+        l.count_unloading((4.1, 5.8), path, 1.0, band);
         assert_eq!((l.twist, l.torque, l.cycles), (4.1, 5.8, 2));
-        l.count_unloading(3.9, 5.7, 1.0, band);
-        assert_eq!((l.twist, l.torque, l.cycles), (4.1, 5.7, 3));
-        l.count_unloading(3.8, 5.0, 1.0, band);
-        assert_eq!((l.twist, l.torque, l.cycles), (4.1, 5.7, 3));
-        l.count_unloading(4.4, 6.1, 1.0, band);
+        l.count_unloading((3.9, 5.7), path, 1.0, band);
+        assert_eq!((l.twist, l.torque, l.cycles), (4.1, 1.5 * 4.1, 3));
+        l.count_unloading((3.8, 5.0), path, 1.0, band);
+        assert_eq!((l.twist, l.torque, l.cycles), (4.1, 1.5 * 4.1, 3));
+        l.count_unloading((4.4, 6.1), path, 1.0, band);
         assert_eq!((l.twist, l.torque, l.cycles), (4.4, 6.1, 1));
         // n stops at MAX_CYCLES; theta_m and T_m are still updated.
         l.cycles = MAX_CYCLES - 1;
-        l.count_unloading(4.4, 6.0, 1.0, band);
+        l.count_unloading((4.4, 6.0), path, 1.0, band);
         assert_eq!(l.cycles, MAX_CYCLES);
-        l.count_unloading(4.3, 5.9, 1.0, band);
-        assert_eq!((l.twist, l.torque, l.cycles), (4.4, 5.9, MAX_CYCLES));
+        l.count_unloading((4.3, 5.9), path, 1.0, band);
+        assert_eq!((l.twist, l.torque, l.cycles), (4.4, 1.5 * 4.4, MAX_CYCLES));
         let mut uncracked = Level::<f64>::default();
-        uncracked.count_unloading(0.5, 1.0, 1.0, band);
+        uncracked.count_unloading((0.5, 1.0), path, 1.0, band);
         assert_eq!(uncracked.cycles, 0);
     }
 }
