@@ -666,3 +666,37 @@ fn errors_in_json_values_name_their_line_and_column() {
         }
     }
 }
+
+/// An output path that is one of the inputs, another output, or in a folder that does not exist
+/// is refused before any work, and the input is left as it was (found by review: `--out` equal to
+/// the record replaced the only copy of a lab record, and a missing folder lost a finished run).
+#[test]
+fn an_output_that_would_overwrite_an_input_is_refused_first() {
+    let record = write("keep.csv", &column_record());
+    let params = write("keep.json", BW);
+    let e = err(hyst(&[
+        "simulate", &record, "--params", &params, "--out", &record,
+    ]));
+    assert!(
+        e.contains(&format!("--out {record}: that is the input {record}")),
+        "{e}"
+    );
+    assert_eq!(std::fs::read_to_string(&record).unwrap(), column_record());
+    let fit = err(hyst(&[
+        "fit", &record, "--model", "bw", "--params", &params, "--out", &params,
+    ]));
+    assert!(fit.contains("that is the input"), "{fit}");
+    assert_eq!(std::fs::read_to_string(&params).unwrap(), BW);
+    let out = cli::tmp("twice.csv");
+    let out = out.to_str().unwrap();
+    let e = err(hyst(&[
+        "simulate", &record, "--params", &params, "--out", out, "--plot", out,
+    ]));
+    assert!(e.contains("--out writes the same file"), "{e}");
+    let missing = cli::tmp("no-such-folder").join("report.html");
+    let missing = missing.to_str().unwrap();
+    let e = err(hyst(&[
+        "discover", &record, "--model", "bw", "--report", missing,
+    ]));
+    assert!(e.contains("does not exist"), "{e}");
+}

@@ -119,6 +119,8 @@ pub enum Command {
     Fe(fe::FeArgs),
 }
 
+use std::path::{Path, PathBuf};
+
 /// Where a verb writes its CSV: the file `path` (created), or standard output.
 fn output(path: Option<&std::path::Path>) -> anyhow::Result<Box<dyn std::io::Write>> {
     use anyhow::Context;
@@ -130,8 +132,98 @@ fn output(path: Option<&std::path::Path>) -> anyhow::Result<Box<dyn std::io::Wri
     })
 }
 
+impl Command {
+    /// The files the command reads, and those it writes with the option that names each (an
+    /// `fe --out` folder is created, and the files in it are the run's own).
+    fn files(&self) -> (Vec<&Path>, Vec<(&'static str, &Path)>) {
+        let mut inputs: Vec<&Path> = Vec::new();
+        let mut outputs: Vec<(&'static str, &Path)> = Vec::new();
+        fn out<'a>(
+            o: &mut Vec<(&'static str, &'a Path)>,
+            flag: &'static str,
+            p: &'a Option<PathBuf>,
+        ) {
+            o.extend(p.as_deref().map(|p| (flag, p)));
+        }
+        match self {
+            Command::Diagnose(a) => {
+                inputs.push(&a.common.data);
+                inputs.extend(a.params.as_deref());
+                out(&mut outputs, "--report", &a.common.report);
+            }
+            Command::Discover(a) => {
+                inputs.push(&a.common.data);
+                out(&mut outputs, "--report", &a.common.report);
+                out(&mut outputs, "--plot", &a.plot);
+            }
+            Command::Fit(a) => {
+                inputs.push(&a.data);
+                inputs.extend(a.params.as_deref());
+                out(&mut outputs, "--out", &a.out);
+                out(&mut outputs, "--pareto", &a.pareto);
+            }
+            Command::Sensitivity(a) => {
+                inputs.extend([a.data.as_path(), a.params.as_path()]);
+                out(&mut outputs, "--plot", &a.plot);
+            }
+            Command::Simulate(a) => {
+                inputs.extend([a.history.as_path(), a.params.as_path()]);
+                out(&mut outputs, "--out", &a.out);
+                out(&mut outputs, "--plot", &a.plot);
+            }
+            Command::Export(a) => {
+                inputs.extend(a.fits.iter().map(PathBuf::as_path));
+                inputs.extend(a.history.as_deref());
+                out(&mut outputs, "--out", &a.out);
+            }
+            Command::Fe(a) => {
+                inputs.push(&a.specimen);
+                out(&mut outputs, "--backbone", &a.backbone);
+            }
+            Command::Params(_) | Command::Table(_) => {}
+        }
+        (inputs, outputs)
+    }
+
+    /// Refuses, before any work, an output that is one of the inputs or another output (the
+    /// only copy of a lab record was overwritten by a typo: found by review) or whose folder
+    /// does not exist (the result of a long run was lost at the end).
+    fn check_outputs(&self) -> anyhow::Result<()> {
+        let same = |a: &Path, b: &Path| match (a.canonicalize(), b.canonicalize()) {
+            (Ok(a), Ok(b)) => a == b,
+            _ => a == b,
+        };
+        let (inputs, outputs) = self.files();
+        for (k, &(flag, p)) in outputs.iter().enumerate() {
+            if let Some(input) = inputs.iter().find(|i| same(p, i)) {
+                anyhow::bail!(
+                    "{flag} {}: that is the input {}, which would be overwritten; choose another path",
+                    p.display(),
+                    input.display()
+                );
+            }
+            if let Some(&(other, _)) = outputs[..k].iter().find(|(_, q)| same(p, q)) {
+                anyhow::bail!(
+                    "{flag} {}: {other} writes the same file; choose another path",
+                    p.display()
+                );
+            }
+            let folder = p.parent().filter(|d| !d.as_os_str().is_empty());
+            if let Some(d) = folder.filter(|d| !d.is_dir()) {
+                anyhow::bail!(
+                    "{flag} {}: the folder {} does not exist",
+                    p.display(),
+                    d.display()
+                );
+            }
+        }
+        Ok(())
+    }
+}
+
 /// Runs a parsed command line.
 pub fn run(cli: Cli) -> anyhow::Result<()> {
+    cli.command.check_outputs()?;
     match cli.command {
         Command::Diagnose(a) => diagnose::run(a),
         Command::Discover(a) => discover::run(a),
