@@ -310,6 +310,31 @@ fn a_diverging_run_is_an_error() {
     ok(hyst(&stiff));
 }
 
+/// A run of more steps than any specimen needs is refused before it starts: a twist history
+/// ending at 1e300 s, or a density of 1e-300, made the step count saturate `u64`, and the run
+/// never ended (found by review).
+#[test]
+fn a_run_of_absurdly_many_steps_is_refused() {
+    for set in [
+        "loading.twist=[[0.0, 0.0], [1e300, 0.001]]",
+        "concrete.density_kg_m3=1e-300",
+    ] {
+        let e = err(hyst(&[
+            "fe",
+            "../specimens/tp-91.toml",
+            "--elastic",
+            "--element-size",
+            "100",
+            "--set",
+            set,
+        ]));
+        assert!(
+            e.contains("TP-91: the run would take") && e.contains("more than the 1e8"),
+            "{set}: {e}"
+        );
+    }
+}
+
 /// A mesh or thread count the run could not use is refused before any work: one element
 /// across used to run as a 1-element mesh, and 3,000 threads took 34 s for a run two threads
 /// do in 0.01 s, all of them waiting at each step's barrier.

@@ -17,6 +17,10 @@ use std::path::PathBuf;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Instant;
 
+/// The most steps a run may take: the specimens of Table 1.1 take 15,000 to 40,000, and 1e8
+/// would take days.
+pub const MAX_STEPS: u64 = 100_000_000;
+
 /// Choices made on the command line beyond the specimen's values (which
 /// `--set`, `--threads` and `--element-size` change when the file is read:
 /// [`Specimen::load_with`]).
@@ -188,6 +192,8 @@ const BAR_SETS: [&str; 2] = ["longitudinal", "transverse"];
 /// Runs a specimen with the given materials until the end of its loading
 /// or until `stop` is set; `progress` is called about every 0.2% of the
 /// run.
+///
+/// A run longer than [`MAX_STEPS`] is refused before it starts.
 pub fn run<M: SolidMaterial, B: BarMaterial>(
     spec: &Specimen,
     materials: &'static str,
@@ -207,7 +213,17 @@ pub fn run<M: SolidMaterial, B: BarMaterial>(
     let model = Model::new(mesh, solid, &sets, bars, emb, spec.settings());
     let dt = model.dt();
     let end = spec.end_time();
-    let steps = (end / dt).ceil() as u64;
+    let ratio = end / dt;
+    // Absurd but positive inputs (a twist history ending at 1e300 s, a density of 1e-300) gave
+    // more steps than `u64` holds, and a run that never ended without a word (found by review).
+    anyhow::ensure!(
+        ratio.is_finite() && ratio <= MAX_STEPS as f64,
+        "{}: the run would take {ratio:.3e} steps of {dt:.3e} s to the end of its history at \
+         {end:.3e} s, more than the {MAX_STEPS:.0e} a run may take: check `loading.twist` and \
+         the material values",
+        spec.name
+    );
+    let steps = ratio.ceil() as u64;
     let every = (steps / spec.output.samples as u64).max(1);
     let vtk_every = spec
         .output
