@@ -243,6 +243,11 @@ fn parameters_the_record_cannot_run_are_refused_with_the_failing_sample() {
         "runaway.json",
         r#"{"model": "bw", "k0": 6, "alpha": 0.1, "n": 2, "beta": -2, "gamma": -1}"#,
     );
+    let sample = |e: &str| {
+        let at = e.find("step to sample ").expect("a failing sample");
+        e[at..].split_whitespace().nth(3).map(str::to_string)
+    };
+    let mut numbers = Vec::new();
     for verb in ["sensitivity", "diagnose"] {
         let e = err(hyst(&[verb, &data, "--params", &params]));
         assert!(
@@ -251,7 +256,14 @@ fn parameters_the_record_cannot_run_are_refused_with_the_failing_sample() {
                 && e.contains("step to sample"),
             "{verb}: {e}"
         );
+        numbers.push(sample(&e));
     }
+    // `simulate` names the record and counts the samples as the others do (it counted from 1,
+    // they from 0, and it named no file: found by review).
+    let e = err(hyst(&["simulate", &data, "--params", &params]));
+    assert!(e.contains("runaway-record.csv: step to sample"), "{e}");
+    numbers.push(sample(&e));
+    assert!(numbers.windows(2).all(|w| w[0] == w[1]), "{numbers:?}");
 }
 
 /// `sensitivity` sweeps what it says: fewer than three levels is an error (it was
@@ -699,4 +711,52 @@ fn an_output_that_would_overwrite_an_input_is_refused_first() {
         "discover", &record, "--model", "bw", "--report", missing,
     ]));
     assert!(e.contains("does not exist"), "{e}");
+}
+
+/// A force-driven record with one row missing is refused at the gap, against the record's
+/// typical step (the check compared with the mean step, which the gap shifts, and blamed the
+/// second sample: found by review).
+#[test]
+fn a_missing_row_of_a_force_driven_record_is_placed() {
+    let full = thesis_example("gap-full.csv", 400);
+    let text: String = std::fs::read_to_string(&full)
+        .unwrap()
+        .lines()
+        .enumerate()
+        // Line 205 holds sample 201 (t = 0.4 s): drop it.
+        .filter(|(k, _)| *k + 1 != 205)
+        .map(|(_, l)| format!("{l}\n"))
+        .collect();
+    let gap = write("gap.csv", &text);
+    let e = err(hyst(&["fit", &gap, "--model", "bw", "--mass", "500"]));
+    assert!(
+        e.contains("gap.csv: sample 201 is 0.004")
+            && e.contains("where the record's steps are 0.002"),
+        "{e}"
+    );
+}
+
+/// A PHM file given where Bouc-Wen parameters are expected, or a misspelt model, is reported as
+/// such at its `"model"` key (both read as `parameter "coefficients" must be a number`, the first
+/// key in alphabetical order that was not a number: found by review).
+#[test]
+fn a_phm_file_or_a_misspelt_model_is_named_at_the_model_key() {
+    let data = write("phm-record.csv", &column_record());
+    let phm = write(
+        "column-phm.json",
+        "{\n  \"model\": \"phm-torsion\",\n  \"coefficients\": {}\n}\n",
+    );
+    for verb in ["sensitivity", "diagnose"] {
+        let e = err(hyst(&[verb, &data, "--params", &phm]));
+        assert!(
+            e.contains("column-phm.json:2:12: a PHM file (model phm-torsion)"),
+            "{verb}: {e}"
+        );
+    }
+    let typo = write(
+        "typo.json",
+        "{\n  \"model\": \"bwbm\",\n  \"coefficients\": {}\n}\n",
+    );
+    let e = err(hyst(&["sensitivity", &data, "--params", &typo]));
+    assert!(e.contains("typo.json:2:12: key \"model\""), "{e}");
 }

@@ -150,7 +150,8 @@ pub fn run(args: SimulateArgs) -> Result<()> {
     let u = record
         .displacement()
         .ok_or_else(|| anyhow!("{}: no displacement column", args.history.display()))?;
-    let sim = simulate(&params, &extras, u)?;
+    let sim =
+        simulate(&params, &extras, u).map_err(|e| anyhow!("{}: {e}", args.history.display()))?;
     let mut out = super::output(args.out.as_deref())?;
     data::write_columns(
         &mut out,

@@ -46,7 +46,7 @@ pub struct Experiment {
 pub enum SimError {
     /// The parameter set was rejected.
     Params(hysteresis::bwbn::ParamError),
-    /// A step failed at this sample.
+    /// A step failed at this sample (0-based; shown counted from 1, as `simulate` does).
     Step(usize, StepError),
 }
 
@@ -54,7 +54,7 @@ impl std::fmt::Display for SimError {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
             SimError::Params(e) => write!(f, "invalid parameters: {e}"),
-            SimError::Step(i, e) => write!(f, "step to sample {i} failed: {e}"),
+            SimError::Step(i, e) => write!(f, "step to sample {} failed: {e}", i + 1),
         }
     }
 }
@@ -302,13 +302,17 @@ pub fn uniform_step(record: &crate::data::Record) -> anyhow::Result<f64> {
     if t.len() < 2 {
         bail!("{src}: a force-driven record needs at least two samples");
     }
-    let dt = (t[t.len() - 1] - t[0]) / (t.len() - 1) as f64;
-    if let Some(i) = (1..t.len()).find(|&i| ((t[i] - t[i - 1]) - dt).abs() > 1e-6 * dt) {
+    // Each step against the median one: against the mean, one missing row shifted the
+    // reference and the check blamed the first sample instead of the gap (found by review).
+    let mut steps: Vec<f64> = t.windows(2).map(|w| w[1] - w[0]).collect();
+    steps.sort_by(f64::total_cmp);
+    let typical = steps[steps.len() / 2];
+    if let Some(i) = (1..t.len()).find(|&i| ((t[i] - t[i - 1]) - typical).abs() > 1e-6 * typical) {
         bail!(
-            "{src}: sample {} is {} s after the previous one, not {dt} s: force-driven models need uniform sampling",
+            "{src}: sample {} is {} s after the previous one, where the record's steps are {typical} s: force-driven models need uniform sampling",
             i + 1,
             t[i] - t[i - 1]
         );
     }
-    Ok(dt)
+    Ok((t[t.len() - 1] - t[0]) / (t.len() - 1) as f64)
 }

@@ -116,7 +116,7 @@ impl ParamFile {
     pub fn parse(path: &Path, text: &str) -> Result<Self> {
         let value: Value = crate::data::unique_keys::parse_file(path, text)?;
         let at = JsonFile::new(path, Some(text));
-        let Value::Object(map) = value else {
+        let Value::Object(mut map) = value else {
             bail!(
                 "{}: expected a JSON object of parameters, found {}",
                 path.display(),
@@ -128,14 +128,23 @@ impl ParamFile {
             text: text.to_string(),
             ..Default::default()
         };
+        // The model first: a PHM file, or a misspelt model, was reported as its first
+        // non-numeric key in alphabetical order (`"coefficients" must be a number`).
+        if let Some(Value::String(s)) = map.get("model") {
+            if s == super::PHM_MODEL {
+                bail!(
+                    "{}: a PHM file (model {s}): this command takes the parameters of a Bouc-Wen model (bw, bwbn, ...)",
+                    at.at(&["model"])
+                );
+            }
+            file.model = Some(
+                ModelSpec::parse(s)
+                    .with_context(|| format!("{}: key \"model\"", at.at(&["model"])))?,
+            );
+            map.remove("model");
+        }
         for (key, v) in map {
             match (key.as_str(), v) {
-                ("model", Value::String(s)) => {
-                    file.model = Some(
-                        ModelSpec::parse(&s)
-                            .with_context(|| format!("{}: key \"model\"", at.at(&["model"])))?,
-                    )
-                }
                 ("units", Value::Object(u)) => {
                     checked_units(
                         at,
