@@ -760,3 +760,33 @@ fn a_phm_file_or_a_misspelt_model_is_named_at_the_model_key() {
     let e = err(hyst(&["sensitivity", &data, "--params", &typo]));
     assert!(e.contains("typo.json:2:12: key \"model\""), "{e}");
 }
+
+/// A parameter set that is valid as written but overflows once scaled to the record (n = 1000
+/// raises the displacement scale to the 1000th power in beta's unit) says so, instead of calling
+/// the file's finite beta "not finite" (found by review).
+#[test]
+fn a_set_that_cannot_be_scaled_to_the_record_says_so() {
+    // The column record with ten times the displacement: its scale is then well above 2 mm.
+    let wide: String = column_record()
+        .lines()
+        .map(|l| match l.split_once(',') {
+            Some((u, f)) if u.parse::<f64>().is_ok() => {
+                format!("{},{f}\n", 10.0 * u.parse::<f64>().unwrap())
+            }
+            _ => format!("{l}\n"),
+        })
+        .collect();
+    let data = write("scaled-record.csv", &wide);
+    let params = write(
+        "n1000.json",
+        r#"{"model": "bw", "k0": 6, "alpha": 0.2, "n": 1000, "beta": 2, "gamma": -1}"#,
+    );
+    for verb in ["diagnose", "sensitivity"] {
+        let e = err(hyst(&[verb, &data, "--params", &params]));
+        assert!(
+            e.contains("valid as written, but not once scaled to the displacement and force of")
+                && e.contains("scaled-record.csv"),
+            "{verb}: {e}"
+        );
+    }
+}

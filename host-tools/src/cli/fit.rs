@@ -192,7 +192,14 @@ pub fn given_point(
     let x = problem.par.normalise(&values);
     match problem.try_predict(&x) {
         Ok(p) => Ok((x, p)),
-        Err(SimError::Params(e)) => bail!("{}: {e}", file.at(&[e.field])),
+        // The file's values passed `build` above: what fails here is the set scaled to the
+        // record (`n = 1000` overflowed beta's scale, and the file's finite beta was blamed as
+        // "not finite": found by review).
+        Err(SimError::Params(e)) => bail!(
+            "{}: valid as written, but not once scaled to the displacement and force of {}: {e}",
+            file.at(&[e.field]),
+            data.display()
+        ),
         Err(e @ SimError::Step(..)) => bail!(
             "{}: the parameters of {} cannot be simulated on this record: {e}",
             data.display(),

@@ -109,10 +109,18 @@ impl ReadOptions {
     /// Checks the sample rate.
     pub(crate) fn checked_sample_rate(&self, file: &Path) -> Result<Option<f64>, DataError> {
         match self.sample_rate_hz {
-            Some(hz) if !(hz.is_finite() && hz > 0.0) => Err(DataError::file(
-                file,
-                format!("expected a positive finite sample rate, found {hz} Hz"),
-            )),
+            // 1e-320 Hz is positive, but its sample times are not finite.
+            Some(hz) if !(hz.is_finite() && hz > 0.0 && hz.recip().is_finite()) => {
+                let shown = if hz == 0.0 || (1e-6..1e12).contains(&hz.abs()) {
+                    format!("{hz}")
+                } else {
+                    format!("{hz:e}")
+                };
+                Err(DataError::file(
+                    file,
+                    format!("expected a positive finite sample rate, found {shown} Hz"),
+                ))
+            }
             other => Ok(other),
         }
     }

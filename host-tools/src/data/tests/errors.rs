@@ -206,6 +206,13 @@ fn malformed_csv_table() {
             "rate.csv: expected a positive finite sample rate, found 0 Hz",
         ),
         (
+            // Positive, but k / rate is not finite (found by review, with 300 digits shown).
+            "tiny-rate.csv",
+            "disp_mm,force_kN\n0,0\n".into(),
+            ReadOptions::default().sample_rate(1e-320),
+            "tiny-rate.csv: expected a positive finite sample rate, found 1e-320 Hz",
+        ),
+        (
             "units_twice.csv",
             "force (kN),disp (mm)\nkN,in\n1,2\n".into(),
             d.clone(),
