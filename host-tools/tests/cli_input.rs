@@ -790,3 +790,27 @@ fn a_set_that_cannot_be_scaled_to_the_record_says_so() {
         );
     }
 }
+
+/// A torque unit beside a length (`force (kNm)`, a misspelt kN) names both columns and their
+/// units, and how to read the column as a force (the message named neither: found by review).
+#[test]
+fn a_torque_unit_beside_a_length_names_the_columns() {
+    let text = column_record().replacen("disp_mm,force_kN", "displacement (mm),force (kNm)", 1);
+    let data = write("knm.csv", &text);
+    let params = write("knm.json", BW);
+    for args in [
+        vec!["simulate", &data, "--params", &params],
+        vec!["fit", &data, "--model", "bw"],
+    ] {
+        let e = err(hyst(&args));
+        assert!(
+            e.contains("column 'displacement (mm)' is a length (mm), column 'force (kNm)' is a torque (kN m)")
+                && e.contains("--force COLUMN:kN"),
+            "{args:?}: {e}"
+        );
+    }
+    // And that reading works.
+    ok(hyst(&[
+        "simulate", &data, "--params", &params, "--force", "2:kN",
+    ]));
+}

@@ -143,8 +143,9 @@ pub fn run(args: SimulateArgs) -> Result<()> {
     }
     if record.is_torsion() {
         bail!(
-            "{}: a twist/torque record: the Bouc-Wen models take displacement; use a PHM file (--model {PHM_MODEL})",
-            args.history.display()
+            "{}: {}: a twist/torque record, which the Bouc-Wen models do not take: use a PHM file (--model {PHM_MODEL}), or give the column a length or force unit (--force COLUMN:kN)",
+            args.history.display(),
+            record.channels_in_words()
         );
     }
     let u = record

@@ -376,6 +376,27 @@ impl Record {
             .any(|c| self.quantity(c) == Some(c.torsion_quantity()))
     }
 
+    /// The two channels in words, for a message about a torsion record:
+    /// `column 'force (kNm)' is a torque (kN m), column 'displacement (mm)' a length (mm)`.
+    /// A torque unit beside a length is most often a misspelt force unit.
+    pub fn channels_in_words(&self) -> String {
+        let words: Vec<String> = [Channel::Displacement, Channel::Force]
+            .into_iter()
+            .filter_map(|c| {
+                let s = self.series(c)?;
+                let what = match s.unit.quantity() {
+                    Quantity::Length => "a length",
+                    Quantity::Force => "a force",
+                    Quantity::Time => "a time",
+                    Quantity::Angle => "a twist",
+                    Quantity::Torque => "a torque",
+                };
+                Some(format!("column '{}' is {what} ({})", s.name, s.unit))
+            })
+            .collect();
+        words.join(", ")
+    }
+
     /// The time series with its column name and original unit.
     pub fn time_series(&self) -> Option<&Series> {
         self.time.as_ref()

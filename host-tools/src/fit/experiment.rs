@@ -242,7 +242,10 @@ impl Experiment {
         use anyhow::{anyhow, bail};
         let src = record.source().display();
         if record.is_torsion() {
-            bail!("{src}: a twist/torque record: the Bouc-Wen models take displacement and force; fit it with --model phm-torsion");
+            bail!(
+                "{src}: {}: a twist/torque record, which the Bouc-Wen models do not take: fit it with --model phm-torsion, or give the column a length or force unit (--force COLUMN:kN)",
+                record.channels_in_words()
+            );
         }
         let (u, f) = record.displacement_force()?;
         match record.input_channel() {
