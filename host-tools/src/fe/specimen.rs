@@ -719,6 +719,10 @@ impl Specimen {
             "column.height_m",
             "the modelled height in m",
         )?;
+        // Information only, but a negative or NaN height was accepted (found by review).
+        if let Some(h) = self.column.total_height_m {
+            pos(h, "column.total_height_m", "the test column's height in m")?;
+        }
         let c = &self.concrete;
         pos(c.fc_mpa, "concrete.fc_mpa", "the cylinder strength in MPa")?;
         if let Some(e) = c.elastic_modulus_mpa {
@@ -963,6 +967,17 @@ impl Specimen {
         }
         for (i, st) in self.output.rebar_station.iter().enumerate() {
             let at = |key: &str| Cow::Owned(format!("output.rebar_station.{i}.{key}"));
+            // Each names a column of `rebar_strains.csv` (two stations of one name gave the
+            // file two columns of that name: found by review).
+            if self.output.rebar_station[..i]
+                .iter()
+                .any(|o| o.name == st.name)
+            {
+                return Err((
+                    at("name"),
+                    format!("a name no other station has, found {:?} again", st.name),
+                ));
+            }
             if st.set != "longitudinal" && st.set != "transverse" {
                 return Err((
                     at("set"),
@@ -1625,6 +1640,30 @@ mod tests {
         let e = Specimen::parse(&bad, Path::new("x.toml")).expect_err("set hoops");
         assert_eq!(e.line, line_of(&bad, "set = \"hoops\""), "{e}");
         assert!(e.message.contains("`output.rebar_station.0.set`"), "{e}");
+    }
+
+    /// Two stations of one name, and a total height that is not a positive number, are refused
+    /// at their line.
+    #[test]
+    fn station_names_are_unique_and_the_total_height_positive() {
+        let tp91 = Path::new(env!("CARGO_MANIFEST_DIR")).join("../specimens/tp-91.toml");
+        let src = std::fs::read_to_string(&tp91).expect("read");
+        let bad = src.replacen(
+            "name = \"transverse-mid\"",
+            "name = \"longitudinal-mid\"",
+            1,
+        );
+        let e = Specimen::parse(&bad, Path::new("x.toml")).expect_err("twice");
+        assert!(e.message.contains("`output.rebar_station.1.name`"), "{e}");
+        assert!(
+            e.message.contains("found \"longitudinal-mid\" again"),
+            "{e}"
+        );
+        for h in ["-1.75", "nan"] {
+            let bad = src.replacen("total_height_m = 1.75", &format!("total_height_m = {h}"), 1);
+            let e = Specimen::parse(&bad, Path::new("x.toml")).expect_err(h);
+            assert!(e.message.contains("`column.total_height_m`"), "{h}: {e}");
+        }
     }
 
     /// An `[assumed]` entry must document a value the file gives; a misspelt key used to be
