@@ -769,11 +769,14 @@ fn a_set_that_cannot_be_scaled_to_the_record_says_so() {
     // The column record with ten times the displacement: its scale is then well above 2 mm.
     let wide: String = column_record()
         .lines()
-        .map(|l| match l.split_once(',') {
-            Some((u, f)) if u.parse::<f64>().is_ok() => {
-                format!("{},{f}\n", 10.0 * u.parse::<f64>().unwrap())
+        .map(|l| {
+            let row = l
+                .split_once(',')
+                .and_then(|(u, f)| Some((u.parse::<f64>().ok()?, f)));
+            match row {
+                Some((u, f)) => format!("{},{f}\n", 10.0 * u),
+                None => format!("{l}\n"),
             }
-            _ => format!("{l}\n"),
         })
         .collect();
     let data = write("scaled-record.csv", &wide);

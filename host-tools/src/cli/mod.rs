@@ -24,6 +24,7 @@ pub mod table;
 use crate::fit::experiment::Between;
 use crate::model::{ModelSpec, ParamFile, PHM_MODEL};
 use clap::{Args, Parser, Subcommand};
+use std::path::{Path, PathBuf};
 use std::str::FromStr;
 
 /// A `--model` value: a Bouc-Wen spec (`bw+pinching`, ...) or the polygonal
@@ -119,10 +120,8 @@ pub enum Command {
     Fe(fe::FeArgs),
 }
 
-use std::path::{Path, PathBuf};
-
 /// Where a verb writes its CSV: the file `path` (created), or standard output.
-fn output(path: Option<&std::path::Path>) -> anyhow::Result<Box<dyn std::io::Write>> {
+fn output(path: Option<&Path>) -> anyhow::Result<Box<dyn std::io::Write>> {
     use anyhow::Context;
     Ok(match path {
         Some(p) => Box::new(

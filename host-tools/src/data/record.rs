@@ -384,14 +384,9 @@ impl Record {
             .into_iter()
             .filter_map(|c| {
                 let s = self.series(c)?;
-                let what = match s.unit.quantity() {
-                    Quantity::Length => "a length",
-                    Quantity::Force => "a force",
-                    Quantity::Time => "a time",
-                    Quantity::Angle => "a twist",
-                    Quantity::Torque => "a torque",
-                };
-                Some(format!("column '{}' is {what} ({})", s.name, s.unit))
+                let q = s.unit.quantity();
+                let a = if q == Quantity::Angle { "an" } else { "a" };
+                Some(format!("column '{}' is {a} {q} ({})", s.name, s.unit))
             })
             .collect();
         words.join(", ")
