@@ -20,7 +20,10 @@
 //! it: relative to the measurement, the model is at least
 //! [`PINCHING_RATIO`] times as stiff near zero force on reloading branches
 //! as it is further along them (pinching is a local softening; degradation
-//! softens the whole branch).
+//! softens the whole branch), or where its fit decides
+//! ([`DECISIVE_FIT`](super::suspects::DECISIVE_FIT)): pinching that grows
+//! over the test shows in the late cycles only, and the ratio over the whole
+//! record misses it.
 
 use super::diagnosis::Diagnosis;
 use crate::data::Branch;

@@ -104,16 +104,18 @@ pub fn path(path: Path) -> Vec<f64> {
     .expect("the synthetic paths have valid settings")
 }
 
-/// The base model with the `hidden` effects at [`hidden_values`], integrated
-/// far more tightly than any fit does.
-fn element(hidden: &[EffectKind]) -> Result<Bwbn<f64>> {
+/// The base model with the `hidden` effects at [`hidden_values`], where
+/// `values` does not say otherwise, integrated far more tightly than any fit
+/// does.
+fn element(hidden: &[EffectKind], values: &[(&str, f64)]) -> Result<Bwbn<f64>> {
     let mut spec = ModelSpec::BW;
     for k in hidden {
         spec = spec.with(EffectRef::Builtin(*k));
     }
-    let values: Vec<(&str, f64)> = BASE
+    let values: Vec<(&str, f64)> = values
         .iter()
         .copied()
+        .chain(BASE.iter().copied())
         .chain(
             hidden
                 .iter()
@@ -144,8 +146,20 @@ pub fn record(
     noise: Noise,
     seed: u64,
 ) -> Result<Experiment> {
+    record_with(hidden, &[], path_kind, noise, seed)
+}
+
+/// As [`record`], with `values` in place of the base's and the hidden
+/// effects' own (`("p", 0.0018)`: pinching that grows over the test).
+pub fn record_with(
+    hidden: &[EffectKind],
+    values: &[(&str, f64)],
+    path_kind: Path,
+    noise: Noise,
+    seed: u64,
+) -> Result<Experiment> {
     let u = path(path_kind);
-    let mut el = element(hidden)?;
+    let mut el = element(hidden, values)?;
     let mut f = Vec::with_capacity(u.len());
     for &ui in &u {
         f.push(
@@ -188,7 +202,7 @@ pub fn record_with_gap(gap: f64, path_kind: Path, noise: Noise, seed: u64) -> Re
     if !(gap.is_finite() && gap >= 0.0) {
         return Err(anyhow!("the gap must be a finite length >= 0, not {gap}"));
     }
-    let mut el = element(&[])?;
+    let mut el = element(&[], &[])?;
     let trial = |el: &mut Bwbn<f64>, y: f64| {
         el.set_trial(y)
             .map(|r| r.force)
