@@ -142,3 +142,31 @@ fn hyst_diagnose_names_the_gap_in_text_and_json() {
     let plateau = v["slip"]["plateau"].as_f64().unwrap();
     assert!((0.8..=1.1).contains(&plateau), "{plateau}");
 }
+
+/// Sampled coarsely around zero force (the step-wise path's 60 samples a
+/// cycle against a stiffness of 20 kN/mm), the force passes through the
+/// band in one or two samples. The evidence says so, instead of a band of
+/// 0 mm and a flatness of 0 (found by review).
+#[test]
+fn a_crossing_between_samples_is_called_too_coarse_to_tell() {
+    let clean = Noise {
+        displacement: 0.0,
+        force: 0.0,
+    };
+    let c = check(record(&[], Path::StepWise, clean, 9).unwrap());
+    println!("{c:?}");
+    assert!(!c.significant);
+    assert!(
+        c.evidence
+            .contains("half-cycles the measured force passes from -10% to +10% of its peak in fewer than three samples"),
+        "{}",
+        c.evidence
+    );
+    // A gap is resolved and measured as before.
+    let c = check(record_with_gap(0.5, Path::StepWise, clean, 9).unwrap());
+    assert!(
+        c.significant && c.evidence.contains("flatness"),
+        "{}",
+        c.evidence
+    );
+}

@@ -132,6 +132,9 @@ pub fn check(d: &Diagnosis, drive: &Drive) -> Option<SlipCheck> {
     }
     let (wide, narrow) = (TAU * peak, 0.5 * TAU * peak);
     let (mut flat, mut excess, mut measured, mut modelled) = (vec![], vec![], vec![], vec![]);
+    // Half-cycles whose wide band holds fewer than three samples: sampled too
+    // coarsely around zero force to tell a slope from a plateau.
+    let mut coarse = 0;
     let mut in_band = vec![false; u.len()];
     for h in d.segmentation.cycles().half_cycles() {
         let path = h.path();
@@ -144,6 +147,7 @@ pub fn check(d: &Diagnosis, drive: &Drive) -> Option<SlipCheck> {
         };
         let m_narrow = band(f, &path, narrow);
         let f_narrow = band(model, &path, narrow);
+        coarse += usize::from(m_wide.clone().count() < 3);
         let w_wide = width(u, Some(&m_wide));
         let (w_m, w_f) = (width(u, m_narrow.as_ref()), width(u, f_narrow.as_ref()));
         flat.push(if w_wide > 0.0 { w_m / w_wide } else { 0.0 });
@@ -191,7 +195,18 @@ pub fn check(d: &Diagnosis, drive: &Drive) -> Option<SlipCheck> {
         "Not significant: the model's band around zero force is about as wide as the measured."
             .to_string()
     };
-    let evidence = format!(
+    let evidence = if !significant && 2 * coarse > reversals {
+        format!(
+            "In {coarse} of {reversals} half-cycles the measured force passes from -{:.0}% to \
+             +{:.0}% of its peak in fewer than three samples, too few to tell a slope from a \
+             plateau; a plateau as long as a gap would hold many. {:.0}% of the squared error \
+             lies around these crossings. Not significant: no sign of a plateau.",
+            100.0 * TAU,
+            100.0 * TAU,
+            100.0 * share,
+        )
+    } else {
+        format!(
         "In {reversals} half-cycles the measured force stays within {:.0}% of its peak around \
          zero over {plateau:.4} mm of displacement (median), the model's over {model_plateau:.4} mm; \
          the measured band at {:.0}% is {:.0}% as wide as at {:.0}% (flatness {flatness:.2}: \
@@ -204,7 +219,8 @@ pub fn check(d: &Diagnosis, drive: &Drive) -> Option<SlipCheck> {
         100.0 * TAU,
         100.0 * excess,
         100.0 * share,
-    );
+    )
+    };
     Some(SlipCheck {
         significant,
         reversals,
