@@ -817,3 +817,30 @@ fn a_torque_unit_beside_a_length_names_the_columns() {
         "simulate", &data, "--params", &params, "--force", "2:kN",
     ]));
 }
+
+/// Progress reaches a log: with standard error a file or a pipe (here: a pipe), a long run
+/// writes plain lines, each stage and the ladder's rungs, stamped with the time. There was no
+/// spinner and no line at all before (a discovery of 13 minutes said nothing until it ended:
+/// found by review).
+#[test]
+fn progress_reaches_a_log_as_plain_lines() {
+    let data = write("progress.csv", &column_record());
+    let o = ok(hyst(&["discover", &data, "--model", "bw"]));
+    let log = cli::stderr(&o);
+    let lines: Vec<&str> = log.lines().collect();
+    assert!(
+        lines.iter().any(|l| l.starts_with("discover from bw [")
+            && l.ends_with("] weighing the candidate effects")),
+        "{log}"
+    );
+    assert!(
+        lines
+            .iter()
+            .any(|l| l.contains("] bw ") && l.contains("NRMSE")),
+        "{log}"
+    );
+    assert!(!log.contains('\r') && !log.contains('\u{1b}'), "{log:?}");
+    // A JSON run keeps standard error for errors.
+    let o = ok(hyst(&["discover", &data, "--model", "bw", "--json"]));
+    assert_eq!(cli::stderr(&o), "");
+}

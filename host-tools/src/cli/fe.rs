@@ -1,15 +1,18 @@
 //! `hyst fe SPECIMEN.toml`: the explicit finite-element analysis of an RC
 //! column under axial load and twist (thesis chapter 2).
 
+use super::fit::Bar;
 use crate::fe::backbone::{self, PrimaryCurve};
 use crate::fe::material::Elastic;
 use crate::fe::output;
 use crate::fe::run::{run, Progress, RunOptions, Summary};
 use crate::fe::section::SHEAR_FLOW_SHARE;
 use crate::fe::specimen::{Override, Specimen};
+use crate::fit::run::Progress as _;
 use anyhow::Context;
 use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
+use std::io::IsTerminal;
 use std::path::PathBuf;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Arc;
@@ -101,13 +104,28 @@ pub fn run_fe(args: FeArgs) -> anyhow::Result<()> {
     let opts = RunOptions {
         out: args.out.clone(),
     };
+    // Where standard error is a log, not a terminal: a plain line every few
+    // seconds instead of the bar.
+    let log = (!args.json && !std::io::stderr().is_terminal())
+        .then(|| Bar::new(&format!("fe {}", args.specimen.display()), false));
     let show = |p: &Progress| {
-        bar.set_length(p.steps);
-        bar.set_position(p.step);
-        bar.set_message(format!(
+        let state = format!(
             "t = {:.4e} s  T = {:.2} kN m  KE/IE = {:.3}",
             p.t, p.torque_knm, p.ke_ie
-        ));
+        );
+        match &log {
+            Some(log) => log.status(&format!(
+                "step {} of {} ({:.0}%)  {state}",
+                p.step,
+                p.steps,
+                100.0 * p.step as f64 / p.steps.max(1) as f64
+            )),
+            None => {
+                bar.set_length(p.steps);
+                bar.set_position(p.step);
+                bar.set_message(state);
+            }
+        }
     };
     let summary = if args.elastic {
         let concrete = Elastic::new(spec.concrete());

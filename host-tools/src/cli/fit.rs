@@ -15,7 +15,9 @@ use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
 use serde_json::{json, Value};
 use std::collections::BTreeMap;
+use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
+use std::sync::Mutex;
 use std::time::Instant;
 
 /// Arguments of `hyst fit`.
@@ -115,13 +117,70 @@ pub fn parse_fix(s: &str) -> Result<(String, f64), String> {
     Ok((n.trim().to_string(), v))
 }
 
-/// A progress bar on standard error with the best error so far.
-pub struct Bar(ProgressBar);
+/// Progress on standard error with the best error so far: a spinner on a
+/// terminal; where standard error is a file or a pipe (a batch job's log),
+/// plain lines instead, each stamped with the time since the start: every
+/// stage, and the status at most every [`LOG_EVERY`] seconds.
+pub struct Bar {
+    pb: ProgressBar,
+    log: Option<Log>,
+}
+
+/// The plain-line side of [`Bar`].
+struct Log {
+    prefix: String,
+    start: Instant,
+    /// When the last status line was written, and whether a stage line
+    /// followed it (then the next status is news and is written at once).
+    last: Mutex<(Option<Instant>, bool)>,
+}
+
+/// Seconds between two status lines of a [`Bar`] writing to a log.
+pub const LOG_EVERY: u64 = 10;
+
+/// What a line of a [`Log`] says.
+#[derive(Clone, Copy, PartialEq)]
+enum Line {
+    /// A stage: always written.
+    Stage,
+    /// A status: written when a stage came since the last status line, or
+    /// after [`LOG_EVERY`] seconds.
+    Status,
+    /// A better error: written after [`LOG_EVERY`] seconds.
+    Improved,
+}
+
+impl Log {
+    fn line(&self, message: &str, kind: Line) {
+        let now = Instant::now();
+        let Ok(mut last) = self.last.lock() else {
+            return;
+        };
+        if kind == Line::Stage {
+            last.1 = true;
+        } else {
+            let recent = last
+                .0
+                .is_some_and(|t| now.duration_since(t).as_secs() < LOG_EVERY);
+            let news = kind == Line::Status && last.1;
+            if recent && !news {
+                return;
+            }
+            *last = (Some(now), false);
+        }
+        eprintln!(
+            "{} [{} s] {message}",
+            self.prefix,
+            now.duration_since(self.start).as_secs()
+        );
+    }
+}
 
 impl Bar {
     /// A spinner labelled `what`, hidden when `quiet`.
     pub fn new(what: &str, quiet: bool) -> Bar {
-        let pb = if quiet {
+        let terminal = std::io::stderr().is_terminal();
+        let pb = if quiet || !terminal {
             ProgressBar::hidden()
         } else {
             ProgressBar::new_spinner()
@@ -132,24 +191,38 @@ impl Bar {
         );
         pb.set_prefix(what.to_string());
         pb.enable_steady_tick(std::time::Duration::from_millis(120));
-        Bar(pb)
+        let log = (!quiet && !terminal).then(|| Log {
+            prefix: what.to_string(),
+            start: Instant::now(),
+            last: Mutex::new((None, true)),
+        });
+        Bar { pb, log }
     }
     /// Removes the bar.
     pub fn finish(&self) {
-        self.0.finish_and_clear();
+        self.pb.finish_and_clear();
     }
 }
 
 impl Progress for Bar {
     fn improved(&self, evaluations: usize, nrmse: f64) {
-        self.0
-            .set_message(format!("{evaluations} simulations, best NRMSE {nrmse:.4e}"));
+        let message = format!("{evaluations} simulations, best NRMSE {nrmse:.4e}");
+        match &self.log {
+            Some(log) => log.line(&message, Line::Improved),
+            None => self.pb.set_message(message),
+        }
     }
     fn stage(&self, message: &str) {
-        self.0.println(format!("  {message}"));
+        match &self.log {
+            Some(log) => log.line(message, Line::Stage),
+            None => self.pb.println(format!("  {message}")),
+        }
     }
     fn status(&self, message: &str) {
-        self.0.set_message(message.to_string());
+        match &self.log {
+            Some(log) => log.line(message, Line::Status),
+            None => self.pb.set_message(message.to_string()),
+        }
     }
 }
 
