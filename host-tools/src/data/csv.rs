@@ -75,6 +75,28 @@ fn role_quantity(r: Role) -> Option<Quantity> {
     }
 }
 
+/// The field separator of a file, from its header line: a comma where the
+/// header has one, else a tab or a semicolon (spreadsheet exports in locales
+/// that write a decimal comma), else a comma (a single column).
+fn separator(header: &str) -> char {
+    [',', '\t', ';']
+        .into_iter()
+        .find(|c| header.contains(*c))
+        .unwrap_or(',')
+}
+
+/// `text` with a decimal comma made a point when it is a number written so
+/// (`-1,5`, `2,75e-3`); anything else as it is.
+fn decimal_point(text: &str) -> String {
+    let t = text.trim();
+    let candidate = t.replacen(',', ".", 1);
+    if t.matches(',').count() == 1 && !t.contains('.') && candidate.parse::<f64>().is_ok() {
+        candidate
+    } else {
+        text.to_string()
+    }
+}
+
 fn is_units_line(fields: &[&str]) -> bool {
     let fields: Vec<&str> = fields.iter().map(|f| unquote(f)).collect();
     fields
@@ -522,13 +544,14 @@ pub(crate) fn parse(file: &Path, text: &str, options: &ReadOptions) -> Result<Re
     // fields (a spreadsheet's `#N/A` or `#DIV/0!` in the first column, which the number
     // check then refuses at its line), otherwise comments, reported as such.
     let mut width_below = None;
+    let mut sep = ',';
     let mut comments_among_rows = Vec::new();
     let mut n_lines = 0;
     for (k, line) in text.lines().enumerate() {
         n_lines = k + 1;
         let t = line.trim();
         if let Some(c) = t.strip_prefix('#') {
-            if width_below.is_some_and(|w| w > 1 && line.split(',').count() == w) {
+            if width_below.is_some_and(|w| w > 1 && line.split(sep).count() == w) {
                 content.push((k + 1, line));
             } else {
                 if width_below.is_some() {
@@ -538,7 +561,8 @@ pub(crate) fn parse(file: &Path, text: &str, options: &ReadOptions) -> Result<Re
             }
         } else if !t.is_empty() {
             if width_below.is_none() {
-                width_below = Some(line.split(',').count());
+                sep = separator(line);
+                width_below = Some(line.split(sep).count());
             }
             content.push((k + 1, line));
         }
@@ -560,7 +584,7 @@ pub(crate) fn parse(file: &Path, text: &str, options: &ReadOptions) -> Result<Re
             )
         });
     };
-    let fields: Vec<HeaderField> = header_text.split(',').map(parse_header_field).collect();
+    let fields: Vec<HeaderField> = header_text.split(sep).map(parse_header_field).collect();
     let width = fields.len();
     let field_count = |line: usize, found: usize| {
         DataError::at(
@@ -574,7 +598,7 @@ pub(crate) fn parse(file: &Path, text: &str, options: &ReadOptions) -> Result<Re
     let mut rest = &content[1..];
     let mut units = None;
     if let Some(&(line, t)) = rest.first() {
-        let f: Vec<&str> = t.split(',').collect();
+        let f: Vec<&str> = t.split(sep).collect();
         if is_units_line(&f) {
             if f.len() != width {
                 return Err(field_count(line, f.len()));
@@ -626,11 +650,26 @@ pub(crate) fn parse(file: &Path, text: &str, options: &ReadOptions) -> Result<Re
     }
 
     let mut skipped = 0;
+    let mut decimal_commas = 0;
     for &(line, t) in rest {
-        let f: Vec<&str> = t.split(',').collect();
+        let f: Vec<&str> = t.split(sep).collect();
         if f.len() != width {
             return Err(field_count(line, f.len()));
         }
+        // Fields separated by `;` or tabs may write numbers with a decimal
+        // comma (a spreadsheet's export in many locales).
+        let points: Vec<String>;
+        let f: Vec<&str> = if sep != ',' && f.iter().any(|v| v.contains(',')) {
+            points = f.iter().map(|v| decimal_point(v)).collect();
+            decimal_commas += f
+                .iter()
+                .zip(&points)
+                .filter(|(a, b)| **a != b.as_str())
+                .count();
+            points.iter().map(String::as_str).collect()
+        } else {
+            f
+        };
         if skipped < options.skip_rows {
             skipped += 1;
             notices.push(Notice::SkippedRow {
@@ -676,6 +715,12 @@ pub(crate) fn parse(file: &Path, text: &str, options: &ReadOptions) -> Result<Re
     };
     if !ignored.is_empty() {
         notices.push(Notice::IgnoredColumns { columns: ignored });
+    }
+    if sep != ',' {
+        notices.push(Notice::Separator {
+            separator: sep,
+            decimal_commas,
+        });
     }
     if !comments_among_rows.is_empty() {
         notices.push(Notice::CommentsAmongRows {

@@ -129,7 +129,8 @@ impl ReadOptions {
 /// The formats the readers know, by file extension.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Format {
-    /// Comma-separated values with a header (`.csv`, `.txt`).
+    /// Comma-separated values with a header (`.csv`, `.txt`, `.tsv`; tabs or
+    /// semicolons where the header has no comma).
     Csv,
     /// One of the JSON layouts of [`json`](super::json) (`.json`).
     Json,
@@ -143,12 +144,12 @@ impl Format {
             .and_then(|e| e.to_str())
             .map(str::to_ascii_lowercase);
         match ext.as_deref() {
-            Some("csv") | Some("txt") => Ok(Format::Csv),
+            Some("csv") | Some("txt") | Some("tsv") => Ok(Format::Csv),
             Some("json") => Ok(Format::Json),
             other => Err(DataError::file(
                 path,
                 format!(
-                    "expected a .csv, .txt or .json file, found {} (MATLAB .mat and HDF5 files \
+                    "expected a .csv, .tsv, .txt or .json file, found {} (MATLAB .mat and HDF5 files \
                      are not read: use their CSV copies)",
                     other.map_or("no extension".to_string(), |e| format!("'.{e}'"))
                 ),

@@ -118,6 +118,14 @@ pub enum Notice {
         /// The row as written.
         text: String,
     },
+    /// The fields of a CSV file are separated by a tab or a semicolon, not a
+    /// comma (read from its header line).
+    Separator {
+        /// The separator.
+        separator: char,
+        /// Values written with a decimal comma, read as numbers.
+        decimal_commas: usize,
+    },
     /// Comment lines between data rows (CSV), skipped.
     CommentsAmongRows {
         /// Their line numbers.
@@ -158,6 +166,20 @@ impl fmt::Display for Notice {
             }
             Notice::SkippedRow { at, text } => {
                 write!(f, "row at {at} skipped as asked: '{text}'")
+            }
+            Notice::Separator {
+                separator,
+                decimal_commas,
+            } => {
+                let name = if *separator == '\t' { "tabs" } else { "semicolons" };
+                write!(f, "fields separated by {name}, as the header is")?;
+                if *decimal_commas > 0 {
+                    write!(
+                        f,
+                        "; {decimal_commas} values written with a decimal comma (1,5 = 1.5)"
+                    )?;
+                }
+                Ok(())
             }
             Notice::CommentsAmongRows { lines } => {
                 let shown: Vec<String> = lines.iter().take(5).map(|l| l.to_string()).collect();

@@ -254,7 +254,7 @@ fn unreadable_and_unknown_files() {
     let e = read("x.mat", &ReadOptions::default()).unwrap_err();
     assert_eq!(
         e.to_string(),
-        "x.mat: expected a .csv, .txt or .json file, found '.mat' (MATLAB .mat and HDF5 files are \
+        "x.mat: expected a .csv, .tsv, .txt or .json file, found '.mat' (MATLAB .mat and HDF5 files are \
          not read: use their CSV copies)"
     );
 }
@@ -310,6 +310,58 @@ fn a_row_starting_with_a_hash_is_data_and_a_comment_among_rows_is_reported() {
     // Comment lines above the header are the file's own, with no notice.
     let r = read_str("h.csv", header, Format::Csv, &ReadOptions::default()).unwrap();
     assert!(r.notices().is_empty());
+}
+
+/// A spreadsheet export with semicolons or tabs between the fields, and in many locales a
+/// decimal comma, is read as such and said so; before, its one long "column" was refused as
+/// having no displacement (found by review). A number that is not one either way is still
+/// refused at its line and column.
+#[test]
+fn semicolons_tabs_and_decimal_commas() {
+    let d = ReadOptions::default();
+    for (sep, name) in [(';', "semicolons"), ('\t', "tabs")] {
+        let text =
+            format!("displacement (mm){sep}force (kN)\n0{sep}0\n1,5{sep}-2,25e-1\n2{sep}3\n");
+        let r = read_str("s.csv", &text, Format::Csv, &d).unwrap();
+        assert_eq!(r.displacement().unwrap(), &[0.0, 1.5, 2.0]);
+        assert_eq!(r.force().unwrap(), &[0.0, -0.225, 3.0]);
+        assert_eq!(
+            r.notices(),
+            &[Notice::Separator {
+                separator: sep,
+                decimal_commas: 2
+            }]
+        );
+        assert_eq!(
+            r.notices()[0].to_string(),
+            format!("fields separated by {name}, as the header is; 2 values written with a decimal comma (1,5 = 1.5)")
+        );
+        let bad = format!("displacement (mm){sep}force (kN)\n0{sep}0\n1,5,0{sep}2\n");
+        assert_eq!(
+            csv_error("s.csv", &bad, &d),
+            "s.csv:3:1: expected a number for column 'displacement (mm)', found '1,5,0'"
+        );
+    }
+    // A comma in the header makes it a comma-separated file, where a decimal comma cannot be.
+    let r = read_str(
+        "c.csv",
+        "displacement (mm),force (kN)\n1.5,2\n",
+        Format::Csv,
+        &d,
+    )
+    .unwrap();
+    assert!(r.notices().is_empty());
+    assert_eq!(
+        csv_error("c.csv", "displacement (mm),force (kN)\n1,5,2\n", &d),
+        "c.csv:2:3: expected 2 fields as in the header (line 1), found 3"
+    );
+    // And a .tsv file is read as such.
+    let dir = std::env::temp_dir().join(format!("hyst-tsv-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("t.tsv");
+    std::fs::write(&path, "displacement (mm)\tforce (kN)\n0\t0\n1\t2\n").unwrap();
+    assert_eq!(read(&path, &d).unwrap().force().unwrap(), &[0.0, 2.0]);
+    std::fs::remove_dir_all(&dir).ok();
 }
 
 #[test]
