@@ -4,6 +4,7 @@
 
 use super::diagnose::{diagnosis_json, initial_fit, print_diagnosis, Beyond, Common, Initial};
 use super::fit::Bar;
+use crate::discover::slip;
 use crate::discover::{discover, page};
 use crate::fit::run::Progress;
 use crate::report::plots::{ladder, Rung as PlotRung};
@@ -51,13 +52,14 @@ pub fn run(args: DiscoverArgs) -> Result<()> {
         ));
     })?;
     let last = discovery.last();
-    let beyond = Beyond::check(
+    let mut beyond = Beyond::check(
         &last.problem,
         &last.outcome,
         &last.diagnosis,
         time.as_deref(),
         monotone,
     );
+    beyond.slip = slip::of_ladder(&discovery, beyond.slip);
     bar.finish();
     let rungs: Vec<PlotRung> = discovery
         .rungs
