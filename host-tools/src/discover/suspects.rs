@@ -47,7 +47,7 @@ use std::collections::BTreeMap;
 pub const SIGNIFICANT_BIC: f64 = -10.0;
 
 /// An effect whose signature the residual lacks (see
-/// [`signature`](super::signature)) still enters the comparison when the
+/// [`signature`]) still enters the comparison when the
 /// best model holding it has at most this fraction of the NRMSE of the best
 /// model without it: then its fit decides. A signature is measured over the
 /// whole record on the current model's residual, and pinching that grows
