@@ -10,7 +10,7 @@
 #[path = "support/shared_records.rs"]
 mod shared_records;
 use hyst::discover::synthetic::{record, record_with, Noise, Path};
-use hyst::discover::{discover, weigh, Diagnosis, WeighOptions};
+use hyst::discover::{discover, weigh, Diagnosis, Discovery, WeighOptions};
 use hyst::fit::experiment::Experiment;
 use hyst::fit::problem::Problem;
 use hyst::fit::run::{self, Method, Quiet};
@@ -22,6 +22,20 @@ fn fit_bw(exp: Experiment) -> (Problem, hyst::fit::run::Outcome) {
     let problem = Problem::new(ModelSpec::BW, exp, &[]).unwrap();
     let outcome = run::fit(&problem, Method::Auto, &problem.par.default_start(), &Quiet).unwrap();
     (problem, outcome)
+}
+
+/// Fits `bw`, runs the discovery loop from it and returns the first NRMSE,
+/// the loop's result and its ladder as text ("model nrmse -> ...").
+fn ladder_of(exp: Experiment) -> (f64, Discovery, String) {
+    let (problem, outcome) = fit_bw(exp);
+    let first = outcome.scores.nrmse;
+    let found = discover(problem, outcome, &WeighOptions::default(), |_| {}).unwrap();
+    let ladder: Vec<String> = found
+        .rungs
+        .iter()
+        .map(|r| format!("{} {:.4}", r.model, r.nrmse))
+        .collect();
+    (first, found, ladder.join(" -> "))
 }
 
 /// The top significant suspect, if any, and the NRMSE with it.
@@ -106,15 +120,8 @@ fn pairs_of_hidden_effects_are_found_by_the_loop() {
     for (a, i) in SINGLES.iter().zip(0..) {
         for b in &SINGLES[i + 1..] {
             let exp = record(&[*a, *b], Path::StepWise, Noise::LOW, 300 + i as u64).unwrap();
-            let (problem, outcome) = fit_bw(exp);
-            let first = outcome.scores.nrmse;
-            let found = discover(problem, outcome, &WeighOptions::default(), |_| {}).unwrap();
-            let ladder: Vec<String> = found
-                .rungs
-                .iter()
-                .map(|r| format!("{} {:.4}", r.model, r.nrmse))
-                .collect();
-            eprintln!("{} + {}: {}", a.name(), b.name(), ladder.join(" -> "));
+            let (first, found, ladder) = ladder_of(exp);
+            eprintln!("{} + {}: {ladder}", a.name(), b.name());
             let last = found.last();
             let spec = last.spec;
             let named_first = found.steps.get(1).map(|s| s.spec);
@@ -122,10 +129,9 @@ fn pairs_of_hidden_effects_are_found_by_the_loop() {
                 named_first.is_some_and(|s| s.effects.contains(*a) || s.effects.contains(*b));
             if !(first_ok && first / last.outcome.scores.nrmse >= 3.0) {
                 failures.push(format!(
-                    "{} + {}: {} (final {spec})",
+                    "{} + {}: {ladder} (final {spec})",
                     a.name(),
-                    b.name(),
-                    ladder.join(" -> ")
+                    b.name()
                 ));
             }
         }
@@ -141,26 +147,21 @@ fn the_shared_synthetic_records_pass() {
     assert_eq!(k, EffectKind::Pinching, "s1: {report}");
     assert!(nrmse / with >= 3.0, "s1: {nrmse} -> {with}");
     // s2 hides strength and stiffness degradation: the loop adds both.
-    let (problem, outcome) = fit_bw(shared("s2_hidden_degradation.csv"));
-    let first = outcome.scores.nrmse;
-    let found = discover(problem, outcome, &WeighOptions::default(), |_| {}).unwrap();
-    let last = found.last();
+    let (first, found, ladder) = ladder_of(shared("s2_hidden_degradation.csv"));
+    let effects = found.last().spec.effects;
     assert!(
-        last.spec.effects.contains(EffectKind::StrengthDegradation),
-        "s2 ended at {}",
-        last.spec
+        effects.contains(EffectKind::StrengthDegradation),
+        "s2: {ladder}"
     );
     assert!(
-        last.spec.effects.contains(EffectKind::StiffnessDegradation),
-        "s2 ended at {}",
-        last.spec
+        effects.contains(EffectKind::StiffnessDegradation),
+        "s2: {ladder}"
     );
+    assert!(!effects.contains(EffectKind::Pinching), "s2: {ladder}");
     assert!(
-        !last.spec.effects.contains(EffectKind::Pinching),
-        "s2 ended at {}",
-        last.spec
+        first / found.last().outcome.scores.nrmse >= 3.0,
+        "s2: {ladder}"
     );
-    assert!(first / last.outcome.scores.nrmse >= 3.0);
 }
 
 /// Pinching that grows over the test, as in RC columns: the hidden
@@ -197,16 +198,10 @@ fn pinching_that_grows_over_the_test_is_named_alone() {
                 400 + 3 * i as u64 + j as u64,
             )
             .unwrap();
-            let (problem, outcome) = fit_bw(exp);
-            let found = discover(problem, outcome, &WeighOptions::default(), |_| {}).unwrap();
-            let ladder: Vec<String> = found
-                .rungs
-                .iter()
-                .map(|r| format!("{} {:.4}", r.model, r.nrmse))
-                .collect();
-            eprintln!("p = {p} / {what}: {}", ladder.join(" -> "));
+            let (_, found, ladder) = ladder_of(exp);
+            eprintln!("p = {p} / {what}: {ladder}");
             if found.last().spec.to_string() != "bw+pinching" {
-                failures.push(format!("p = {p} / {what}: {}", ladder.join(" -> ")));
+                failures.push(format!("p = {p} / {what}: {ladder}"));
             }
         }
     }
@@ -230,25 +225,14 @@ fn pinching_that_grows_beside_degradation_is_named_too() {
         410,
     )
     .unwrap();
-    let (problem, outcome) = fit_bw(exp);
-    let first = outcome.scores.nrmse;
-    let found = discover(problem, outcome, &WeighOptions::default(), |_| {}).unwrap();
-    let ladder: Vec<String> = found
-        .rungs
-        .iter()
-        .map(|r| format!("{} {:.4}", r.model, r.nrmse))
-        .collect();
+    let (first, found, ladder) = ladder_of(exp);
     let last = found.last();
     for kind in [
         EffectKind::Pinching,
         EffectKind::StrengthDegradation,
         EffectKind::StiffnessDegradation,
     ] {
-        assert!(last.spec.effects.contains(kind), "{}", ladder.join(" -> "));
+        assert!(last.spec.effects.contains(kind), "{ladder}");
     }
-    assert!(
-        first / last.outcome.scores.nrmse >= 3.0,
-        "{}",
-        ladder.join(" -> ")
-    );
+    assert!(first / last.outcome.scores.nrmse >= 3.0, "{ladder}");
 }
