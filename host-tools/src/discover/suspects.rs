@@ -385,23 +385,16 @@ pub fn weigh(
             .chain(&pairs)
             .filter(|f| f.fit.is_some())
     };
-    let decisive: Vec<(EffectRef, f64)> = candidates
-        .iter()
-        .map(|e| {
-            let best = |with: bool| {
-                fitted_models()
-                    .filter(|f| f.effects.contains(e) == with)
-                    .map(|f| f.cost)
-                    .fold(f64::INFINITY, f64::min)
-            };
-            (*e, (best(true) / best(false)).sqrt())
-        })
-        .collect();
+    // NRMSE of the best fitted model holding `e` over that of the best
+    // without it.
     let fit_ratio = |e: &EffectRef| {
-        decisive
-            .iter()
-            .find(|(x, _)| x == e)
-            .map_or(f64::NAN, |(_, r)| *r)
+        let best = |with: bool| {
+            fitted_models()
+                .filter(|f| f.effects.contains(e) == with)
+                .map(|f| f.cost)
+                .fold(f64::INFINITY, f64::min)
+        };
+        (best(true) / best(false)).sqrt()
     };
     let gated = |e: &EffectRef| {
         let absent = signatures
