@@ -552,7 +552,7 @@ fn candidates_are_distinct_effects_to_add() {
 
 /// A parameter file's `"units"` are checked (both keys, known units, nothing else), and the
 /// verbs that simulate in mm and kN refuse parameters stated in other units, which they read as
-/// mm and kN before; `export` labels a device table with them.
+/// mm and kN before; `export` labels a device table with them, by symbol.
 #[test]
 fn parameter_units_are_checked_and_never_ignored() {
     let history = write("units-history.csv", "displacement (mm)\n0\n1\n2\n");
@@ -605,10 +605,23 @@ fn parameter_units_are_checked_and_never_ignored() {
         notes.contains("units-none.json states no units: the table takes in / kip from"),
         "{notes}"
     );
-    ok(simulate(&with_units(
-        "units-mm.json",
-        r#"{"displacement": "mm", "force": "kN"}"#,
-    )));
+    let mm = with_units("units-mm.json", r#"{"displacement": "mm", "force": "kN"}"#);
+    ok(simulate(&mm));
+    // Units are compared as units: `MM` and `KN` (accepted in a header) are mm and kN, here
+    // and in a table beside a file that spells them `mm` and `kN` (both were refused before).
+    let upper = with_units(
+        "units-upper.json",
+        r#"{"displacement": "MM", "force": "KN"}"#,
+    );
+    ok(simulate(&upper));
+    let table = ok(hyst(&[
+        "export", &upper, &mm, "--format", "bin", "--scalar", "f64",
+    ]));
+    assert!(
+        cli::stderr(&table).contains("units mm / kN, 2 elements"),
+        "{}",
+        cli::stderr(&table)
+    );
 }
 
 /// `path:line:column` of the first occurrence of `needle` in `text` (column in bytes),

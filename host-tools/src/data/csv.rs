@@ -242,10 +242,20 @@ impl Header<'_> {
                 let r = quantity_role(u.quantity());
                 if let NameRole::Specific(named) = name_role {
                     if named != r {
+                        // As written too when that differs: `nm` reads as N m, not nanometres.
+                        let written = match &unit_text {
+                            Some((t, _)) if unit_opt[i].is_none() && t.trim() != u.symbol() => {
+                                format!(" (written '{}')", t.trim())
+                            }
+                            _ => String::new(),
+                        };
+                        let expected = role_quantity(named)
+                            .map(|q| format!(": expected {}", q.known_symbols()))
+                            .unwrap_or_default();
                         return Err(self.err(
                             i + 1,
                             format!(
-                                "column '{}' is named like {named} but its unit {u} is a {} unit",
+                                "column '{}' is named like {named} but its unit {u}{written} is a {} unit{expected}",
                                 h.text,
                                 u.quantity()
                             ),
@@ -534,6 +544,25 @@ impl Reader {
     }
 }
 
+/// The lines of `text`, ended by `\n`, `\r\n` or a lone `\r` (the line end
+/// of classic Mac OS, which some spreadsheet exports still write: read with
+/// `str::lines` such a file was one line, a header without data).
+fn lines(text: &str) -> impl Iterator<Item = &str> {
+    let mut rest = text;
+    std::iter::from_fn(move || {
+        if rest.is_empty() {
+            return None;
+        }
+        let (line, next) = match rest.find(['\n', '\r']) {
+            Some(i) if rest[i..].starts_with("\r\n") => (&rest[..i], i + 2),
+            Some(i) => (&rest[..i], i + 1),
+            None => (rest, rest.len()),
+        };
+        rest = &rest[next..];
+        Some(line)
+    })
+}
+
 /// Parses CSV text; `file` names it in messages.
 pub(crate) fn parse(file: &Path, text: &str, options: &ReadOptions) -> Result<Record, DataError> {
     let sample_rate = options.checked_sample_rate(file)?;
@@ -547,7 +576,7 @@ pub(crate) fn parse(file: &Path, text: &str, options: &ReadOptions) -> Result<Re
     let mut sep = ',';
     let mut comments_among_rows = Vec::new();
     let mut n_lines = 0;
-    for (k, line) in text.lines().enumerate() {
+    for (k, line) in lines(text).enumerate() {
         n_lines = k + 1;
         let t = line.trim();
         if let Some(c) = t.strip_prefix('#') {

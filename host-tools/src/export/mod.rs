@@ -10,6 +10,7 @@ mod render;
 pub use render::{render, Format};
 
 use crate::data::json_place::JsonFile;
+use crate::data::Unit;
 use crate::model::{is_phm, ModelSpec, ParamFile, PhmFile, PHM_POINTS};
 use anyhow::{anyhow, bail, Context, Result};
 use hysteresis::bwbn::BwbnParams;
@@ -41,6 +42,11 @@ impl Elements {
     pub fn is_empty(&self) -> bool {
         self.len() == 0
     }
+}
+
+/// The symbol of a unit the parameter readers have accepted (`KN` -> `kN`).
+fn symbol(text: String) -> String {
+    Unit::parse(&text).map_or(text, |u| u.symbol().to_string())
 }
 
 /// Parameter files read for export.
@@ -142,7 +148,8 @@ pub fn read(paths: &[PathBuf]) -> Result<Sources> {
                 }
             );
         }
-        if let Some(u) = stated {
+        // Compared and labelled by unit, not by spelling: `KN` is kN.
+        if let Some(u) = stated.map(|(a, b)| (symbol(a), symbol(b))) {
             match &units {
                 Some((first, v)) if *v != u => bail!(
                     "{}: units {} / {} differ from {}'s {} / {}",

@@ -100,7 +100,9 @@ impl ParamFile {
         let file = Self::parse(path, &text)?;
         if let Some(u) = &file.units {
             let (d, f) = (&u["displacement"], &u["force"]);
-            if d != "mm" || f != "kN" {
+            // Compared as units, not as text: `MM` and `KN` are mm and kN.
+            let unit = |v: &Value| v.as_str().and_then(Unit::parse);
+            if unit(d) != Some(Unit::Millimetre) || unit(f) != Some(Unit::Kilonewton) {
                 bail!(
                     "{}: parameters in {} and {}, but hyst simulates in mm and kN: give them in mm and kN (a device table takes other units from `hyst export`)",
                     file.at(&["units"]),

@@ -113,7 +113,15 @@ fn malformed_csv_table() {
             "conflict.csv",
             "force (mm),displacement (kN)\n0,0\n".into(),
             d.clone(),
-            "conflict.csv:1:1: column 'force (mm)' is named like force but its unit mm is a length unit",
+            "conflict.csv:1:1: column 'force (mm)' is named like force but its unit mm is a length \
+             unit: expected N, kN, MN, kip, lbf",
+        ),
+        (
+            "nanometres.csv",
+            "displacement (nm),force (kN)\n0,0\n".into(),
+            d.clone(),
+            "nanometres.csv:1:1: column 'displacement (nm)' is named like displacement but its \
+             unit N m (written 'nm') is a torque unit: expected mm, cm, m, in",
         ),
         (
             "back.csv",
@@ -366,6 +374,7 @@ fn semicolons_tabs_and_decimal_commas() {
 
 #[test]
 fn overrides_and_conventions() {
+    let d = ReadOptions::default();
     // A unit given in the options replaces the file's, with a notice.
     let text = "disp (in),force (kN)\n1,2\n";
     let options = ReadOptions::default().unit("disp", Unit::Millimetre);
@@ -412,6 +421,20 @@ fn overrides_and_conventions() {
     assert_eq!(r.time().unwrap(), &[0.0, 0.25]);
     assert_eq!(r.displacement().unwrap(), &[10.0, 20.0]);
     assert_eq!(r.force().unwrap(), &[1.0, -0.5]);
+    // Lone CRs (classic Mac OS) end lines as LF and CRLF do, in the values
+    // read and in the line an error names.
+    let record = "# rig 3\ndisplacement (mm),force (kN)\n0,0\n\n1,2.5\n-1,-2\n";
+    let bad = record.replace("2.5", "x");
+    for end in ["\r\n", "\r"] {
+        let r = read_str("cr.csv", &record.replace('\n', end), Format::Csv, &d).unwrap();
+        assert_eq!(r.displacement().unwrap(), &[0.0, 1.0, -1.0], "{end:?}");
+        assert_eq!(r.force().unwrap(), &[0.0, 2.5, -2.0], "{end:?}");
+        assert_eq!(
+            csv_error("cr.csv", &bad.replace('\n', end), &d),
+            "cr.csv:5:2: expected a number for column 'force (kN)', found 'x'",
+            "{end:?}"
+        );
+    }
     // Columns chosen by number; Ignore silences a column.
     let r = read_str(
         "n.csv",
