@@ -404,6 +404,39 @@ fn a_truncated_parameter_file_is_reported_before_the_options() {
     );
 }
 
+/// Parameter and PHM files saved with a byte-order mark (Notepad's) read as without it: they
+/// were refused as "not valid JSON ... at line 1 column 1". A Latin-1 byte is refused at its
+/// line and column; it was "cannot read: stream did not contain valid UTF-8", with no place.
+#[test]
+fn parameter_files_with_a_bom_read_and_latin1_is_placed() {
+    let bytes = |name: &str, b: &[u8]| {
+        let p = cli::tmp(name);
+        std::fs::write(&p, b).unwrap();
+        p.to_str().unwrap().to_string()
+    };
+    let history = write("bom-history.csv", "displacement (mm)\n0\n1\n-1\n0\n");
+    let simulate = |params: &str| ok(hyst(&["simulate", &history, "--params", params])).stdout;
+    let bom = bytes("bom.json", &[b"\xef\xbb\xbf", BW.as_bytes()].concat());
+    assert_eq!(simulate(&bom), simulate(&write("no-bom.json", BW)));
+    let twist = write("bom-twist.csv", "twist (deg)\n0\n1\n0\n-1\n0\n");
+    let phm = |params: &str| ok(hyst(&["simulate", &twist, "--params", params])).stdout;
+    let phm_bom = bytes("bom-phm.json", &[b"\xef\xbb\xbf", PHM.as_bytes()].concat());
+    assert_eq!(phm(&phm_bom), phm(&write("no-bom-phm.json", PHM)));
+    let at = BW.find(r#""bw""#).unwrap() + 3;
+    let mut latin1 = BW.as_bytes().to_vec();
+    latin1.insert(at, 0xe9);
+    let e = err(hyst(&[
+        "simulate",
+        &history,
+        "--params",
+        &bytes("latin1.json", &latin1),
+    ]));
+    assert!(
+        e.contains(&format!("latin1.json:1:{}: byte 0xe9 is not UTF-8", at + 1)),
+        "{e}"
+    );
+}
+
 /// `export --history` drives the elements with the history's quantity: a twist history for
 /// Bouc-Wen elements, or millimetres for the PHM, is refused (degrees were read as mm), and the
 /// reader's notes are printed as by every other verb.

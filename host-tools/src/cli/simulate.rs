@@ -60,7 +60,7 @@ pub struct SimulateArgs {
 /// Whether the file at `path` is JSON declaring `"model": "phm-torsion"`
 /// (an unreadable or invalid file is not: its reader reports it).
 fn declares_phm(path: &std::path::Path) -> bool {
-    std::fs::read_to_string(path)
+    crate::data::read_text(path)
         .ok()
         .and_then(|t| serde_json::from_str::<serde_json::Value>(&t).ok())
         .is_some_and(|v| is_phm(&v))

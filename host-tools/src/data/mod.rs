@@ -87,7 +87,7 @@ pub use cycles::{Cycle, CycleError, Cycles, Direction, HalfCycle, Peak, Threshol
 pub use error::{DataError, Location};
 pub use history::{HistoryError, Irregular, Normal, Protocol, Shape};
 pub use json::JsonLayout;
-pub use read::{read, read_str, ColumnRef, Format, ReadOptions};
+pub use read::{read, read_str, read_text, ColumnRef, Format, ReadOptions};
 pub use record::{Channel, Notice, Record, Series};
 pub use residuals::{Breakdown, Tally};
 pub use units::{Quantity, Unit};

@@ -170,10 +170,22 @@ impl Format {
 pub fn read(path: impl AsRef<Path>, options: &ReadOptions) -> Result<Record, DataError> {
     let path = path.as_ref();
     let format = Format::of(path)?;
+    let text = read_text(path)?;
+    read_str(path, &text, format, options)
+}
+
+/// The text of a file every reader takes (records, parameter, PHM and
+/// specimen files): UTF-8, with a leading byte-order mark dropped (a
+/// spreadsheet's or Notepad's; the JSON and TOML parsers refuse it at 1:1).
+/// A byte that is not UTF-8 is an error at its line and column.
+pub fn read_text(path: &Path) -> Result<String, DataError> {
     let bytes = std::fs::read(path)
         .map_err(|e| DataError::file(path, format!("cannot read the file: {e}")))?;
-    let text = String::from_utf8(bytes).map_err(|e| not_utf8(path, &e))?;
-    read_str(path, &text, format, options)
+    let mut text = String::from_utf8(bytes).map_err(|e| not_utf8(path, &e))?;
+    if text.starts_with('\u{feff}') {
+        text.drain(..'\u{feff}'.len_utf8());
+    }
+    Ok(text)
 }
 
 /// Where the text stops being UTF-8: the line and column (in characters) of

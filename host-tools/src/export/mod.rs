@@ -12,7 +12,7 @@ pub use render::{render, Format};
 use crate::data::json_place::JsonFile;
 use crate::data::Unit;
 use crate::model::{is_phm, ModelSpec, ParamFile, PhmFile, PHM_POINTS};
-use anyhow::{anyhow, bail, Context, Result};
+use anyhow::{anyhow, bail, Result};
 use hysteresis::bwbn::BwbnParams;
 use hysteresis::phm::{Direction, PhmParams};
 use hysteresis::table::{
@@ -82,8 +82,7 @@ pub fn read(paths: &[PathBuf]) -> Result<Sources> {
     let mut unstated: Vec<String> = vec![];
     let mut notes = vec![];
     for path in paths {
-        let text = std::fs::read_to_string(path)
-            .with_context(|| format!("{}: cannot read", path.display()))?;
+        let text = crate::data::read_text(path)?;
         let value = crate::data::unique_keys::parse_file(path, &text)?;
         let (stated, kind) = if is_phm(&value) {
             let f = PhmFile::from_json(JsonFile::new(path, Some(&text)), &value)?;

@@ -28,6 +28,7 @@ use super::mesh::{Mesh, Section};
 use super::model::{Settings, TimeStep};
 use super::rebar::{self, BarSet};
 use super::steel::{HardeningSteel, HARDENING_RATIO};
+use crate::data::Location;
 use serde::Deserialize;
 use std::borrow::Cow;
 use std::collections::BTreeMap;
@@ -639,11 +640,17 @@ fn assumed_entry(src: &str, key: &str) -> Option<usize> {
 
 /// The text of a specimen file, or an error naming it.
 fn read_source(path: &Path) -> Result<String, SpecError> {
-    std::fs::read_to_string(path).map_err(|e| SpecError {
-        file: path.to_owned(),
-        line: 1,
-        column: 1,
-        message: format!("cannot read the specimen file: {e}"),
+    crate::data::read_text(path).map_err(|e| {
+        let (line, column) = match e.location() {
+            Location::Text { line, column } => (*line, *column),
+            Location::File | Location::Json(_) => (1, 1),
+        };
+        SpecError {
+            file: path.to_owned(),
+            line,
+            column,
+            message: e.message().replace("the file", "the specimen file"),
+        }
     })
 }
 
@@ -1356,6 +1363,33 @@ mod tests {
             let mesh = s.mesh();
             rebar::embed(&mesh, &s.bar_sets()).unwrap_or_else(|e| panic!("{}: {e}", p.display()));
         }
+    }
+
+    /// A byte-order mark (Notepad's) is dropped; a Latin-1 byte is refused at
+    /// its line and column, not as "stream did not contain valid UTF-8".
+    #[test]
+    fn a_bom_is_read_and_a_latin1_byte_is_placed() {
+        let tp91 = Path::new(env!("CARGO_MANIFEST_DIR")).join("../specimens/tp-91.toml");
+        let src = std::fs::read(&tp91).expect("read");
+        let dir = std::env::temp_dir().join(format!("hyst-specimen-bytes-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).expect("temp dir");
+        let bom = dir.join("bom.toml");
+        std::fs::write(&bom, [&b"\xef\xbb\xbf"[..], &src].concat()).expect("write");
+        let read = Specimen::load(&bom).unwrap_or_else(|e| panic!("{e}"));
+        assert_eq!(read, Specimen::load(&tp91).expect("tp-91"));
+        let text = String::from_utf8(src).expect("utf-8");
+        let at = text.find("size_mm").expect("size_mm");
+        let line = text[..at].matches('\n').count() + 1;
+        let start = text[..at].rfind('\n').map_or(0, |i| i + 1);
+        let column = text[start..at].chars().count() + 1;
+        let latin1 = dir.join("latin1.toml");
+        let mut bytes = text.into_bytes();
+        bytes[at] = 0xb5;
+        std::fs::write(&latin1, bytes).expect("write");
+        let e = Specimen::load(&latin1).expect_err("not UTF-8");
+        assert_eq!((e.line, e.column), (line, column), "{e}");
+        assert!(e.message.starts_with("byte 0xb5 is not UTF-8"), "{e}");
+        std::fs::remove_dir_all(&dir).expect("clean up");
     }
 
     #[test]

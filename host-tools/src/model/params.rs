@@ -95,8 +95,7 @@ impl ParamFile {
     /// with [`parse`](Self::parse) and labels the table with them.)
     pub fn read(path: impl AsRef<Path>) -> Result<Self> {
         let path = path.as_ref();
-        let text = std::fs::read_to_string(path)
-            .with_context(|| format!("{}: cannot read", path.display()))?;
+        let text = crate::data::read_text(path)?;
         let file = Self::parse(path, &text)?;
         if let Some(u) = &file.units {
             let (d, f) = (&u["displacement"], &u["force"]);

@@ -23,7 +23,7 @@
 use super::params::checked_units;
 use crate::data::json_place::JsonFile;
 use crate::data::{Quantity, Unit};
-use anyhow::{anyhow, bail, Context, Result};
+use anyhow::{anyhow, bail, Result};
 use hysteresis::phm::{BackboneRule, Direction, Phm, PhmError, PhmParams, SPECS};
 use hysteresis::Element;
 use serde_json::{json, Map, Value};
@@ -79,8 +79,7 @@ impl PhmFile {
     /// Reads and validates a PHM parameter file.
     pub fn read(path: impl AsRef<Path>) -> Result<Self> {
         let path = path.as_ref();
-        let text = std::fs::read_to_string(path)
-            .with_context(|| format!("{}: cannot read", path.display()))?;
+        let text = crate::data::read_text(path)?;
         let value: Value = crate::data::unique_keys::parse_file(path, &text)?;
         Self::from_json(JsonFile::new(path, Some(&text)), &value)
     }
