@@ -173,7 +173,7 @@ fn a_short_force_driven_record_fits_plain_bouc_wen() {
 }
 
 /// A record with nothing to fit (a force that is zero throughout, a displacement that never
-/// moves) or forces too large to square is refused, where a fit "succeeded" with `k0` at
+/// moves), forces too large to square or scales that put a parameter beyond f64 is refused, where a fit "succeeded" with `k0` at
 /// 1e-308 or an NRMSE of NaN.
 #[test]
 fn records_without_anything_to_fit_are_refused() {
@@ -203,6 +203,34 @@ fn records_without_anything_to_fit_are_refused() {
     );
     let e = cli::err(hyst(&["fit", &huge, "--method", "lsq"]));
     assert!(e.contains("found values up to 4e155 kN"), "{e}");
+    // A column record scaled down: at 1e-50 its beta scales as up to 1e200 (displacement^-n,
+    // n up to 4) and it fits; at 1e-160 beta overflows within its search range, and the fit
+    // ended at NRMSE 0.22 (against 6e-8 at 1e-150) without a word.
+    let scaled = |name: &str, by: f64| {
+        let mut text = String::from("disp_mm,force_kN\n");
+        for line in column_record().lines().skip(1) {
+            let (u, f) = line.split_once(',').unwrap();
+            let (u, f): (f64, f64) = (u.parse().unwrap(), f.parse().unwrap());
+            text += &format!("{:e},{:e}\n", u * by, f * by);
+        }
+        write(name, &text)
+    };
+    ok(hyst(&[
+        "fit",
+        &scaled("small.csv", 1e-50),
+        "--method",
+        "lsq",
+    ]));
+    let e = cli::err(hyst(&[
+        "fit",
+        &scaled("tiny.csv", 1e-160),
+        "--method",
+        "lsq",
+    ]));
+    assert!(
+        e.contains("put `beta` beyond the range of f64 (1e-308 to 1e308) within its search range (it scales as displacement^-n, at n = 4): rescale the record"),
+        "{e}"
+    );
 }
 
 /// A force-driven fit file carries the test's mass: `sensitivity` and `diagnose --params` read
