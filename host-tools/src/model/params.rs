@@ -219,8 +219,20 @@ impl ParamFile {
                 );
             }
         }
-        spec.build(|n| self.values.get(n).copied())
-            .map_err(|e| anyhow!("{}: {e}", self.at(&[e.field])))
+        let built = spec
+            .build(|n| self.values.get(n).copied())
+            .map_err(|e| anyhow!("{}: {e}", self.at(&[e.field])))?;
+        // A limit no effect reads did nothing, in silence.
+        if self.values.contains_key(ENERGY_LIMIT)
+            && spec.custom == 0
+            && !built.0.effects().reads_energy(&())
+        {
+            bail!(
+                "{}: \"energy_limit\" bounds the energy that degradation and pinching read, and model {spec} has neither: it would change nothing (remove it)",
+                self.at(&[ENERGY_LIMIT])
+            );
+        }
+        Ok(built)
     }
 
     /// `path:line:column` of the value at the key path `keys` in the file
@@ -335,5 +347,22 @@ mod tests {
             .unwrap_err()
             .to_string();
         assert!(m.contains("--model bw disagrees"), "{m}");
+        // An energy limit where nothing reads the energy (plain bw, asymmetry) is refused; with
+        // an effect that reads it, it is taken.
+        let bw = r#"{"k0": 6, "alpha": 0.2, "n": 1.2, "beta": 2, "gamma": -1, "energy_limit": 50}"#;
+        let m = msg(bw);
+        assert!(
+            m.starts_with("p.json:1:75: \"energy_limit\" bounds the energy that degradation and pinching read, and model bw has neither"),
+            "{m}"
+        );
+        let f = parse(&bw.replace("{", r#"{"model": "bw+asymmetry", "#)).unwrap();
+        let e = f.build(f.spec(None).unwrap(), false).unwrap_err();
+        assert!(
+            e.to_string().contains("model bw+asymmetry has neither"),
+            "{e}"
+        );
+        let f = parse(&bw.replace("{", r#"{"model": "bw+pinching", "zeta0": 0.5, "#)).unwrap();
+        let (p, _) = f.build(f.spec(None).unwrap(), false).unwrap();
+        assert_eq!(p.energy_limit(), 50.0);
     }
 }
