@@ -103,6 +103,45 @@ fn the_parameter_table_is_aligned() {
     }
 }
 
+/// `hyst params --model phm-torsion` lists the rule coefficients of thesis ch. 5 (it was refused
+/// as an unknown model base): the values are the thesis' (eq. 4, k_Tr1/k_T1 = 0.7513 mu_c^-0.786),
+/// and a PHM file holding every listed coefficient at its listed value simulates as one holding
+/// none.
+#[test]
+fn the_phm_coefficients_are_listed() {
+    let out = ok(hyst(&["params", "--model", "phm-torsion"]));
+    let text = String::from_utf8(out.stdout).unwrap();
+    let table: Vec<(String, f64)> = text
+        .lines()
+        .skip_while(|l| !l.starts_with("name"))
+        .skip(1)
+        .map(|l| {
+            let cells: Vec<&str> = l.split_whitespace().collect();
+            (cells[0].to_string(), cells[2].parse().unwrap())
+        })
+        .collect();
+    assert!(table.contains(&("eq4_a".into(), 0.7513)), "{text}");
+    assert!(table.contains(&("eq4_b".into(), -0.786)), "{text}");
+    let mut all: serde_json::Value = serde_json::from_str(PHM).unwrap();
+    all["coefficients"] = table
+        .iter()
+        .map(|(n, v)| (n.clone(), serde_json::Value::from(*v)))
+        .collect();
+    let mut none = all.clone();
+    none.as_object_mut().unwrap().remove("coefficients");
+    let (all, none) = (all.to_string(), none.to_string());
+    let twist = write(
+        "listed-twist.csv",
+        "twist (deg)\n0\n1\n3\n0\n-3\n0\n5\n-5\n0\n",
+    );
+    let run = |name: &str, text: &str| {
+        ok(hyst(&["simulate", &twist, "--params", &write(name, text)])).stdout
+    };
+    assert_eq!(run("listed-all.json", &all), run("listed-none.json", &none));
+    // The history reaches the rules: the file's own coefficients change the loop.
+    assert_ne!(run("listed-own.json", PHM), run("listed-none.json", &none));
+}
+
 /// A key given twice in a JSON file is refused with its place: `serde_json` alone would keep the
 /// last one, and `k0` would silently be 60.
 #[test]
