@@ -142,6 +142,25 @@ fn the_phm_coefficients_are_listed() {
     assert_ne!(run("listed-own.json", PHM), run("listed-none.json", &none));
 }
 
+/// `--fix` beside `--params` must agree with the file: `diagnose --params fit.json --fix beta=3`
+/// evaluated the file's set with beta replaced by 3, without a word. Agreeing values pass (the
+/// fix then holds in the candidates' fits too).
+#[test]
+fn a_fix_that_contradicts_the_parameter_file_is_refused() {
+    let record = write("fix-record.csv", &column_record());
+    let params = write("fix-bw.json", BW);
+    let diagnose = |fix: &str| hyst(&["diagnose", &record, "--params", &params, "--fix", fix]);
+    let e = err(diagnose("beta=3"));
+    assert!(
+        e.contains(&format!(
+            "--fix beta=3 contradicts {}: beta = 2 there",
+            place(&params, BW, "2, \"gamma\"")
+        )),
+        "{e}"
+    );
+    ok(diagnose("beta=2"));
+}
+
 /// A key given twice in a JSON file is refused with its place: `serde_json` alone would keep the
 /// last one, and `k0` would silently be 60.
 #[test]

@@ -254,7 +254,18 @@ pub fn given_point(
     problem: &Problem,
     data: &Path,
 ) -> Result<(Vec<f64>, Prediction)> {
-    file.build(problem.par.spec, problem.par.dynamic)?;
+    let (built, _) = file.build(problem.par.spec, problem.par.dynamic)?;
+    // A `--fix` that contradicts the file: the fixed value was simulated, the file's dropped
+    // without a word (`diagnose --params fit.json --fix beta=2` evaluated a mixture).
+    for (name, fixed) in &problem.par.fixed {
+        let given = file.values.get(*name).copied().or_else(|| built.get(name));
+        if let Some(given) = given.filter(|g| g != fixed) {
+            bail!(
+                "--fix {name}={fixed} contradicts {}: {name} = {given} there; drop the --fix or change the file",
+                file.at(&[name])
+            );
+        }
+    }
     if problem.par.names().contains(&"xi") && !file.values.contains_key("xi") {
         bail!(
             "{}: no `xi` (viscous damping ratio): a force-driven record needs the parameters of a force-driven fit",
