@@ -13,7 +13,7 @@
 use super::experiment::{Drive, Experiment};
 use crate::model::{EffectRef, Extras, ModelSpec};
 use anyhow::{bail, Result};
-use hysteresis::bwbn::{BwbnParams, ParamError, ParamSpec, Unit};
+use hysteresis::bwbn::{BwbnParams, EffectKind, ParamError, ParamSpec, Unit};
 use hysteresis::Scalar;
 use std::collections::BTreeMap;
 
@@ -239,8 +239,21 @@ impl Parametrization {
         for (name, v) in fixed {
             let Some(s) = all.iter().find(|s| s.name == name.as_str()) else {
                 let names: Vec<_> = all.iter().map(|s| s.name).collect();
+                // A parameter of an effect the model lacks (`discover --model bw --fix
+                // zeta0=0.5`, meant for the pinching candidate) says where it belongs.
+                let owner = EffectKind::ALL
+                    .into_iter()
+                    .find(|k| k.params().iter().any(|p| p.name == name.as_str()))
+                    .map(|k| {
+                        format!(
+                            "; it is a parameter of {}: fix it on a model that has it (--model {spec}+{})",
+                            k.name(),
+                            k.name()
+                        )
+                    })
+                    .unwrap_or_default();
                 bail!(
-                    "cannot fix `{name}`: model {spec} has no such parameter (it has {})",
+                    "cannot fix `{name}`: model {spec} has no such parameter (it has {}){owner}",
                     names.join(", ")
                 );
             };
@@ -531,9 +544,17 @@ mod tests {
     fn unknown_fixed_parameters_are_named() {
         let e = Parametrization::new(ModelSpec::BW, &ramp_record(), &[("zeta0".into(), 0.5)])
             .unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "cannot fix `zeta0`: model bw has no such parameter (it has k0, alpha, n, beta, \
+             gamma); it is a parameter of pinching: fix it on a model that has it (--model \
+             bw+pinching)"
+        );
+        let e = Parametrization::new(ModelSpec::BW, &ramp_record(), &[("zeta".into(), 0.5)])
+            .unwrap_err();
         assert!(
             e.to_string()
-                .contains("cannot fix `zeta0`: model bw has no such parameter"),
+                .ends_with("(it has k0, alpha, n, beta, gamma)"),
             "{e}"
         );
     }
