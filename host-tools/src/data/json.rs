@@ -96,6 +96,18 @@ fn text_of(obj: &Map<String, Value>, key: &str) -> Option<String> {
     obj.get(key).and_then(Value::as_str).map(str::to_string)
 }
 
+/// The arrays in the object at `key` other than the layout's `read` ones, as
+/// paths (`data.drift`).
+fn unread_arrays(obj: &Map<String, Value>, key: &str, read: &[&str]) -> Vec<String> {
+    obj.get(key)
+        .and_then(Value::as_object)
+        .into_iter()
+        .flatten()
+        .filter(|(k, v)| v.is_array() && !read.contains(&k.as_str()))
+        .map(|(k, _)| format!("{key}.{k}"))
+        .collect()
+}
+
 /// The signals of a document before skipping and conversion.
 struct Raw {
     time: Option<(String, Unit, Vec<f64>)>,
@@ -309,12 +321,23 @@ pub(crate) fn parse(file: &Path, text: &str, options: &ReadOptions) -> Result<Re
             ),
         ));
     };
-    let raw = match layout {
+    let mut raw = match layout {
         JsonLayout::PeerSpd => peer(file, obj)?,
         JsonLayout::FastenerConnection => fastener(file, obj)?,
         JsonLayout::FrictionDamper => friction(file, obj)?,
         JsonLayout::SimCenterBrace => brace(file, obj)?,
     };
+    // Arrays beside the two a layout reads (a drift or a second load cell added to an SPD
+    // file) were passed over in silence.
+    let unread: Vec<String> = match layout {
+        JsonLayout::PeerSpd => unread_arrays(obj, "data", &["disp", "force"]),
+        JsonLayout::FastenerConnection => unread_arrays(obj, "test", &["displacement", "force"]),
+        JsonLayout::SimCenterBrace => unread_arrays(obj, "test", &["axialDef", "axialForce"]),
+        JsonLayout::FrictionDamper => Vec::new(),
+    };
+    if !unread.is_empty() {
+        raw.notices.push(Notice::IgnoredColumns { columns: unread });
+    }
     let n = raw.disp.2.len();
     if raw.force.2.len() != n {
         return Err(DataError::json(

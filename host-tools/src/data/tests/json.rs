@@ -37,6 +37,34 @@ fn peer_raw_json_equals_the_fd_csv() {
     assert_eq!(n, 13);
 }
 
+/// An array beside the two a layout reads is named in a notice, in each layout that keeps its
+/// signals in an object; the real files have none.
+#[test]
+fn arrays_the_layout_does_not_read_are_named() {
+    let read_notices = |text: &str| {
+        read_str("extra.json", text, Format::Json, &ReadOptions::default())
+            .unwrap()
+            .notices()
+            .to_vec()
+    };
+    let ignored = |columns: &[&str]| Notice::IgnoredColumns {
+        columns: columns.iter().map(|c| c.to_string()).collect(),
+    };
+    let peer =
+        r#"{"data": {"disp": [0, 1, 0], "force": [0, 2, 1], "drift": [0, 0.1, 0], "note": "x"}}"#;
+    assert!(read_notices(peer).contains(&ignored(&["data.drift"])));
+    let fastener = r#"{"source": [{"units": ["in", "lbf"]}],
+        "test": {"displacement": [0, 1, 0], "force": [0, 2, 1], "time": [0, 1, 2], "name": "t"}}"#;
+    assert_eq!(read_notices(fastener), [ignored(&["test.time"])]);
+    let brace =
+        r#"{"test": {"axialDef": [0, 1, 0], "axialForce": [0, 2, 1], "strain": [0, 1, 2]}}"#;
+    assert!(read_notices(brace).contains(&ignored(&["test.strain"])));
+    let plain = r#"{"data": {"disp": [0, 1, 0], "force": [0, 2, 1]}}"#;
+    assert!(!read_notices(plain)
+        .iter()
+        .any(|n| matches!(n, Notice::IgnoredColumns { .. })));
+}
+
 #[test]
 fn cfs_fasteners_in_inches_and_lbf() {
     // PROVENANCE table: points and ranges (in, lbf).
