@@ -374,7 +374,6 @@ fn semicolons_tabs_and_decimal_commas() {
 
 #[test]
 fn overrides_and_conventions() {
-    let d = ReadOptions::default();
     // A unit given in the options replaces the file's, with a notice.
     let text = "disp (in),force (kN)\n1,2\n";
     let options = ReadOptions::default().unit("disp", Unit::Millimetre);
@@ -423,6 +422,7 @@ fn overrides_and_conventions() {
     assert_eq!(r.force().unwrap(), &[1.0, -0.5]);
     // Lone CRs (classic Mac OS) end lines as LF and CRLF do, in the values
     // read and in the line an error names.
+    let d = ReadOptions::default();
     let record = "# rig 3\ndisplacement (mm),force (kN)\n0,0\n\n1,2.5\n-1,-2\n";
     let bad = record.replace("2.5", "x");
     for end in ["\r\n", "\r"] {
