@@ -547,7 +547,7 @@ pub fn weigh(
                 evidence.push_str(&s.sentence);
                 if !s.supports && !gated(&effect) {
                     evidence.push_str(&format!(
-                        " Its pattern is not in the residual, but the best model with it has {:.2}x the NRMSE of the best without it (decisive below {DECISIVE_FIT}): the fit decides.",
+                        " Its pattern is not in the residual, but the best model with it has {:.2}x the NRMSE of the best without it (decisive below {DECISIVE_FIT}), so it is weighed on its fit all the same.",
                         fit_ratio(&effect)
                     ));
                 }
