@@ -255,6 +255,17 @@ impl fmt::Display for Unit {
 mod tests {
     use super::*;
 
+    /// A device table labels its units by symbol, in at most 8 ASCII characters each.
+    #[test]
+    fn every_symbol_fits_a_device_table() {
+        for u in Unit::ALL {
+            assert!(
+                hysteresis::table::Units::new(u.symbol(), u.symbol()).is_some(),
+                "{u}"
+            );
+        }
+    }
+
     #[test]
     fn every_symbol_parses_back_to_its_unit() {
         for u in Unit::ALL {

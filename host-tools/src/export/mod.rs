@@ -44,11 +44,6 @@ impl Elements {
     }
 }
 
-/// The symbol of a unit the parameter readers have accepted (`KN` -> `kN`).
-fn symbol(text: String) -> String {
-    Unit::parse(&text).map_or(text, |u| u.symbol().to_string())
-}
-
 /// Parameter files read for export.
 #[derive(Clone, Debug)]
 pub struct Sources {
@@ -62,13 +57,6 @@ pub struct Sources {
     pub notes: Vec<String>,
 }
 
-/// One element's units as `(displacement, force)`, if its file states them.
-fn bwbn_units(f: &ParamFile) -> Option<(String, String)> {
-    let u = f.units.as_ref()?;
-    let get = |k: &str| u.get(k).and_then(|v| v.as_str()).map(str::to_string);
-    Some((get("displacement")?, get("force")?))
-}
-
 /// Reads parameter files (flat BWBN files as `hyst fit` writes them, or PHM
 /// files, `"model": "phm-torsion"`), one element each. All must be of one
 /// model kind and effect set, and state the same units (or none).
@@ -78,7 +66,7 @@ pub fn read(paths: &[PathBuf]) -> Result<Sources> {
     }
     let mut bwbn = vec![];
     let mut phm = vec![];
-    let mut units: Option<(PathBuf, (String, String))> = None;
+    let mut units: Option<(PathBuf, (Unit, Unit))> = None;
     let mut unstated: Vec<String> = vec![];
     let mut notes = vec![];
     for path in paths {
@@ -133,7 +121,7 @@ pub fn read(paths: &[PathBuf]) -> Result<Sources> {
                 }
             }
             bwbn.push(p);
-            (bwbn_units(&f), ModelKind::Bwbn)
+            (f.units, ModelKind::Bwbn)
         };
         if !bwbn.is_empty() && !phm.is_empty() {
             bail!(
@@ -148,7 +136,7 @@ pub fn read(paths: &[PathBuf]) -> Result<Sources> {
             );
         }
         // Compared and labelled by unit, not by spelling: `KN` is kN.
-        if let Some(u) = stated.map(|(a, b)| (symbol(a), symbol(b))) {
+        if let Some(u) = stated {
             match &units {
                 Some((first, v)) if *v != u => bail!(
                     "{}: units {} / {} differ from {}'s {} / {}",
@@ -174,13 +162,9 @@ pub fn read(paths: &[PathBuf]) -> Result<Sources> {
             first.display()
         ));
     }
-    let units = match &units {
-        Some((path, (d, f))) => Units::new(d, f).ok_or_else(|| {
-            anyhow!(
-                "{}: units \"{d}\" / \"{f}\": a table holds at most 8 ASCII characters each",
-                path.display()
-            )
-        })?,
+    let units = match units {
+        // Labelled by symbol, which always fits (`every_symbol_fits_a_device_table`).
+        Some((_, (d, f))) => Units::new(d.symbol(), f.symbol()).expect("a unit symbol fits"),
         None => Units::default(),
     };
     let elements = if phm.is_empty() {

@@ -36,8 +36,9 @@ pub struct ParamFile {
     pub model: Option<ModelSpec>,
     /// Numeric parameters by name.
     pub values: BTreeMap<String, f64>,
-    /// The `units` object, if present.
-    pub units: Option<Map<String, Value>>,
+    /// The `(displacement, force)` units, if stated (checked, and compared as units: `KN` is
+    /// kN).
+    pub units: Option<(Unit, Unit)>,
     /// The `fit` object, if present.
     pub fit: Option<Value>,
     /// The file's text, to place errors about its values.
@@ -97,16 +98,11 @@ impl ParamFile {
         let path = path.as_ref();
         let text = crate::data::read_text(path)?;
         let file = Self::parse(path, &text)?;
-        if let Some(u) = &file.units {
-            let (d, f) = (&u["displacement"], &u["force"]);
-            // Compared as units, not as text: `MM` and `KN` are mm and kN.
-            let unit = |v: &Value| v.as_str().and_then(Unit::parse);
-            if unit(d) != Some(Unit::Millimetre) || unit(f) != Some(Unit::Kilonewton) {
+        if let Some((d, f)) = file.units {
+            if (d, f) != (Unit::Millimetre, Unit::Kilonewton) {
                 bail!(
-                    "{}: parameters in {} and {}, but hyst simulates in mm and kN: give them in mm and kN (a device table takes other units from `hyst export`)",
-                    file.at(&["units"]),
-                    d.as_str().unwrap_or_default(),
-                    f.as_str().unwrap_or_default()
+                    "{}: parameters in {d} and {f}, but hyst simulates in mm and kN: give them in mm and kN (a device table takes other units from `hyst export`)",
+                    file.at(&["units"])
                 );
             }
         }
@@ -147,7 +143,7 @@ impl ParamFile {
         for (key, v) in map {
             match (key.as_str(), v) {
                 ("units", Value::Object(u)) => {
-                    checked_units(
+                    let [(_, d), (_, f)] = checked_units(
                         at,
                         &u,
                         [
@@ -155,7 +151,7 @@ impl ParamFile {
                             ("force", Quantity::Force),
                         ],
                     )?;
-                    file.units = Some(u);
+                    file.units = Some((d, f));
                 }
                 ("fit", v) => file.fit = Some(v),
                 (k, v) if META.contains(&k) => bail!(

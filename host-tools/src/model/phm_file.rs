@@ -43,7 +43,7 @@ pub struct PhmFile {
     /// The validated parameter set.
     pub params: PhmParams<f64, PHM_POINTS>,
     /// `(twist, torque)` units, if stated.
-    pub units: Option<(String, String)>,
+    pub units: Option<(Unit, Unit)>,
     /// The `(twist, torque)` units the parameters are in: the stated ones,
     /// else deg and kN m.
     pub data_units: (Unit, Unit),
@@ -126,13 +126,13 @@ impl PhmFile {
                             file.at(&["units"])
                         );
                     };
-                    let [(t, twist), (m, torque)] = checked_units(
+                    let [(_, twist), (_, torque)] = checked_units(
                         file,
                         u,
                         [("twist", Quantity::Angle), ("torque", Quantity::Torque)],
                     )?;
                     data_units = (twist, torque);
-                    units = Some((t.to_string(), m.to_string()));
+                    units = Some((twist, torque));
                 }
                 "primary" => {
                     let Some(p) = v.as_object() else {
@@ -322,7 +322,7 @@ mod tests {
         }))
         .unwrap();
         assert_eq!(f.params.coefficients().get("eq4_b"), Some(-0.786));
-        assert_eq!(f.units, Some(("deg".into(), "kN m".into())));
+        assert_eq!(f.units, Some((Unit::Degree, Unit::KilonewtonMetre)));
         let back = PhmFile::from_value(
             Path::new("b.json"),
             &phm_json(&f.params, f.data_units, Some(json!({"nrmse": 0.1}))),
