@@ -976,3 +976,53 @@ fn progress_reaches_a_log_as_plain_lines() {
     let o = ok(hyst(&["discover", &data, "--model", "bw", "--json"]));
     assert_eq!(cli::stderr(&o), "");
 }
+
+/// `--fix` of a candidate effect's parameter (`diagnose --model bw --fix zeta0=0.3`) holds it
+/// when the effect is added, where it was refused as "no such parameter"; a value the effect
+/// refuses is named before any fit, and so is a parameter of an effect that is not weighed.
+#[test]
+fn a_candidate_effect_parameter_is_held_when_it_is_added() {
+    let data = write("column-held.csv", &column_record());
+    let added = |fixes: &[&str]| -> u64 {
+        let mut args = vec!["diagnose", &data, "--candidates", "pinching", "--json"];
+        for f in fixes {
+            args.extend(["--fix", f]);
+        }
+        let out = ok(hyst(&args));
+        let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+        assert_eq!(v["model"], "bw", "{v}");
+        assert_eq!(v["suspects"][0]["effect"], "pinching", "{v}");
+        v["suspects"][0]["added_parameters"].as_u64().unwrap()
+    };
+    assert_eq!(added(&[]), 6);
+    assert_eq!(added(&["zeta0=0.3"]), 5);
+    assert_eq!(added(&["zeta0=0.3", "lambda=0.5", "alpha=0.1"]), 4);
+
+    let e = err(hyst(&[
+        "diagnose",
+        &data,
+        "--candidates",
+        "pinching",
+        "--fix",
+        "zeta0=1.5",
+    ]));
+    assert!(
+        e.contains("the candidate pinching") && e.contains("cannot fix `zeta0` to 1.5"),
+        "{e}"
+    );
+    let e = err(hyst(&[
+        "discover",
+        &data,
+        "--candidates",
+        "strength-degradation",
+        "--fix",
+        "zeta0=0.3",
+    ]));
+    assert!(
+        e.contains(
+            "cannot fix `zeta0`: it is a parameter of pinching, which is neither in the model bw \
+             nor among the candidate effects (strength-degradation)"
+        ),
+        "{e}"
+    );
+}

@@ -7,6 +7,7 @@ use super::fit::{given_point, load_timed, mass_of, parse_fix, Bar, Loaded};
 use super::ForcingArgs;
 use crate::discover::rate::{self, RateCheck};
 use crate::discover::slip::{self, SlipCheck};
+use crate::discover::suspects::default_candidates;
 use crate::discover::{page, weigh, Diagnosis, Suspect, WeighOptions};
 use crate::fit::experiment::Drive;
 use crate::fit::input_noise::Monotone;
@@ -19,6 +20,9 @@ use clap::Args;
 use serde_json::{json, Value};
 use std::path::{Path, PathBuf};
 
+/// Parameters held at values, as `--fix` gives them.
+type Fixes = Vec<(String, f64)>;
+
 /// Options shared by `diagnose` and `discover`.
 #[derive(Debug, Args)]
 pub struct Common {
@@ -27,7 +31,9 @@ pub struct Common {
     /// Model spec: `bw` or `bwbn`, then `+effect` terms.
     #[arg(long, default_value = "bw")]
     pub model: ModelSpec,
-    /// Hold a parameter at a value, e.g. `--fix alpha=0.02`; repeatable.
+    /// Hold a parameter at a value, e.g. `--fix alpha=0.02`; repeatable. A
+    /// parameter of a candidate effect (`zeta0` on `bw`) is held when the
+    /// effect is added.
     #[arg(long = "fix", value_parser = parse_fix)]
     pub fix: Vec<(String, f64)>,
     /// Candidate effects to weigh, comma separated (default: every effect
@@ -73,10 +79,41 @@ impl Common {
             }
             Some(list)
         };
+        let (_, held) = self.split_fix(candidates.as_deref())?;
         Ok(WeighOptions {
             candidates,
+            held,
             ..WeighOptions::default()
         })
+    }
+
+    /// `--fix` split into the model's own parameters and those of candidate
+    /// effects (`candidates`, or the default ones), which are held when their
+    /// effect is added. A parameter of an effect that is neither is refused.
+    fn split_fix(&self, candidates: Option<&[EffectRef]>) -> Result<(Fixes, Fixes)> {
+        let candidates = candidates.map_or_else(|| default_candidates(self.model), <[_]>::to_vec);
+        let owns = |e: &EffectRef, name: &str| e.params().iter().any(|p| p.name == name);
+        let model_has = |name: &str| self.model.params().iter().any(|p| p.name == name);
+        let (mut own, mut held) = (vec![], vec![]);
+        for (name, value) in &self.fix {
+            if model_has(name) {
+                own.push((name.clone(), *value));
+            } else if candidates.iter().any(|e| owns(e, name)) {
+                held.push((name.clone(), *value));
+            } else if let Some(e) = EffectRef::all().into_iter().find(|e| owns(e, name)) {
+                let names: Vec<&str> = candidates.iter().map(|e| e.name()).collect();
+                bail!(
+                    "cannot fix `{name}`: it is a parameter of {}, which is neither in the model {} \
+                     nor among the candidate effects ({}); add it to --candidates or to --model",
+                    e.name(),
+                    self.model,
+                    if names.is_empty() { "none".to_string() } else { names.join(", ") }
+                );
+            } else {
+                own.push((name.clone(), *value));
+            }
+        }
+        Ok((own, held))
     }
 }
 
@@ -113,8 +150,27 @@ pub fn initial_fit(common: &Common, params: Option<&Path>, bar: &Bar) -> Result<
         time,
         monotone,
     } = load_timed(&common.data, &common.read, mass, forcing)?;
-    let problem = Problem::new(common.model, exp, &common.fix)
-        .with_context(|| common.data.display().to_string())?;
+    let options = common.weigh_options()?;
+    let (own, _) = common.split_fix(options.candidates.as_deref())?;
+    let problem =
+        Problem::new(common.model, exp, &own).with_context(|| common.data.display().to_string())?;
+    // A held value the richer model refuses (`--fix zeta0=7`) is named now,
+    // not met as a candidate that cannot be fitted.
+    let candidates = options
+        .candidates
+        .unwrap_or_else(|| default_candidates(common.model));
+    for e in candidates {
+        let held = options
+            .held
+            .iter()
+            .filter(|(n, _)| e.params().iter().any(|p| p.name == n.as_str()));
+        let fixed: Fixes = own.iter().chain(held).cloned().collect();
+        if fixed.len() > own.len() {
+            Problem::new(common.model.with(e), problem.exp.clone(), &fixed).with_context(|| {
+                format!("{}: the candidate {}", common.data.display(), e.name())
+            })?;
+        }
+    }
     if problem.dim() == 0 {
         bail!(
             "every parameter of {} is fixed: nothing to fit",

@@ -92,8 +92,13 @@ pub struct Suspect {
 pub struct WeighOptions {
     /// Candidate effects (default: every effect not in the model).
     pub candidates: Option<Vec<EffectRef>>,
-    /// Starting points for the new parameters per candidate.
+    /// Starting points for every two new free parameters of a candidate
+    /// (the pairs take half as many).
     pub starts: usize,
+    /// Values held for parameters of candidate effects (`--fix zeta0=0.5`
+    /// on a model without pinching), applied when their effect is added; a
+    /// held initial value replaces the canonical 1.
+    pub held: Vec<(String, f64)>,
 }
 
 impl Default for WeighOptions {
@@ -101,6 +106,7 @@ impl Default for WeighOptions {
         WeighOptions {
             candidates: None,
             starts: 4,
+            held: vec![],
         }
     }
 }
@@ -117,7 +123,9 @@ fn lag1(r: &[f64]) -> f64 {
 /// Initial values held at 1 when their effect is added.
 const CANONICAL: [(&str, f64); 3] = [("nu0", 1.0), ("eta0", 1.0), ("A0", 1.0)];
 
-/// Refits `problem`'s model with `effect` added, from the fit `outcome`;
+/// Refits `problem`'s model with `effect` added, from the fit `outcome`
+/// (`starts` starting points for every two new free parameters, the
+/// values `held` for the effect's parameters they name);
 /// with `cold`, and when that fit sits on a bound of its range, also afresh
 /// as `hyst fit` would (eight starts from the default): a base fit stuck in a
 /// corner, as a near-linear spring on a shear-critical column, cannot be
@@ -127,6 +135,7 @@ pub fn refit(
     outcome: &Outcome,
     effect: EffectRef,
     starts: usize,
+    held: &[(String, f64)],
     cold: bool,
 ) -> Result<(Problem, Outcome)> {
     let spec = problem.par.spec.with(effect);
@@ -137,8 +146,18 @@ pub fn refit(
         .map(|(k, v)| (k.to_string(), *v))
         .collect();
     for p in effect.params() {
-        if let Some((_, v)) = CANONICAL.iter().find(|(n, _)| *n == p.name) {
-            fixed.push((p.name.to_string(), *v));
+        let value = held
+            .iter()
+            .find(|(n, _)| n == p.name)
+            .map(|(_, v)| *v)
+            .or_else(|| {
+                CANONICAL
+                    .iter()
+                    .find(|(n, _)| *n == p.name)
+                    .map(|(_, v)| *v)
+            });
+        if let Some(v) = value {
+            fixed.push((p.name.to_string(), v));
         }
     }
     let richer = Problem::new(spec, problem.exp.clone(), &fixed)?;
@@ -154,8 +173,11 @@ pub fn refit(
         .map(|(i, _)| i)
         .collect();
     // Warm start, then draws of the new parameters in the middle half of
-    // their ranges (the others stay warm).
-    let draws = run::starts(&x0, &lo, &hi, starts.max(1), 0x5eed + new.len() as u64);
+    // their ranges (the others stay warm); `starts` for every two of them, as
+    // a fixed count covers a space of six (pinching) far more thinly than one
+    // of one or two.
+    let count = starts.max(1) * new.len().div_ceil(2);
+    let draws = run::starts(&x0, &lo, &hi, count, 0x5eed + new.len() as u64);
     let starts: Vec<Vec<f64>> = draws
         .into_iter()
         .map(|d| {
@@ -316,7 +338,7 @@ pub fn weigh(
     let mut singles: Vec<Fitted> = candidates
         .par_iter()
         .map(
-            |&e| match refit(problem, outcome, e, options.starts, true) {
+            |&e| match refit(problem, outcome, e, options.starts, &options.held, true) {
                 Ok((p, o)) => fitted(vec![e], p, o),
                 Err(_) => Fitted {
                     effects: vec![e],
@@ -345,7 +367,7 @@ pub fn weigh(
         .filter_map(|&(a, b)| {
             let (from, other) = (&singles[a], singles[b].effects[0]);
             let (p, o) = from.fit.as_ref()?;
-            let (p2, o2) = refit(p, o, other, 2, false).ok()?;
+            let (p2, o2) = refit(p, o, other, 2, &options.held, false).ok()?;
             Some(fitted(vec![from.effects[0], other], p2, o2))
         })
         .collect();
