@@ -547,7 +547,7 @@ impl Reader {
 /// The lines of `text`, ended by `\n`, `\r\n` or a lone `\r` (the line end
 /// of classic Mac OS, which some spreadsheet exports still write: read with
 /// `str::lines` such a file was one line, a header without data).
-fn lines(text: &str) -> impl Iterator<Item = &str> {
+pub(crate) fn lines(text: &str) -> impl Iterator<Item = &str> {
     let mut rest = text;
     std::iter::from_fn(move || {
         if rest.is_empty() {

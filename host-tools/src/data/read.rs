@@ -195,8 +195,10 @@ fn not_utf8(path: &Path, e: &std::string::FromUtf8Error) -> DataError {
     let good = e.utf8_error().valid_up_to();
     // The prefix is valid UTF-8 by the error's own account.
     let before = std::str::from_utf8(&bytes[..good]).unwrap_or_default();
-    let line = before.matches('\n').count() + 1;
-    let column = before.rsplit('\n').next().map_or(0, |l| l.chars().count()) + 1;
+    // Lines end as the reader ends them: LF, CRLF or a lone CR.
+    let start = before.rfind(['\n', '\r']).map_or(0, |i| i + 1);
+    let line = csv::lines(before).count() + usize::from(start == before.len());
+    let column = before[start..].chars().count() + 1;
     DataError::at(
         path,
         line,

@@ -236,19 +236,41 @@ fn malformed_csv_table() {
 }
 
 /// A byte that is not UTF-8 (a Latin-1 degree sign in a comment) is placed at its line and
-/// column; the message used to name the file alone.
+/// column, with lines ended as the reader ends them (LF, CRLF or a lone CR: a classic-Mac file
+/// was placed on line 1); the message used to name the file alone.
 #[test]
 fn a_byte_that_is_not_utf8_is_placed() {
-    let path = std::env::temp_dir().join(format!("hyst-latin1-{}.csv", std::process::id()));
-    std::fs::write(&path, b"u (mm),f (kN)\n# at 20 \xb0C\n0,0\n1,2\n").unwrap();
-    let e = read(&path, &ReadOptions::default())
-        .unwrap_err()
-        .to_string();
-    std::fs::remove_file(&path).unwrap();
-    assert!(
-        e.ends_with(".csv:2:9: byte 0xb0 is not UTF-8: save the file as UTF-8 (a Latin-1 '°' or 'µ' is one such byte)"),
-        "{e}"
-    );
+    for end in ["\n", "\r\n", "\r"] {
+        let path = std::env::temp_dir().join(format!("hyst-latin1-{}.csv", std::process::id()));
+        let text = ["u (mm),f (kN)", "# at 20 \u{1}C", "0,0", "1,2", ""].join(end);
+        let bytes: Vec<u8> = text
+            .bytes()
+            .map(|b| if b == 1 { 0xb0 } else { b })
+            .collect();
+        std::fs::write(&path, bytes).unwrap();
+        let e = read(&path, &ReadOptions::default())
+            .unwrap_err()
+            .to_string();
+        std::fs::remove_file(&path).unwrap();
+        assert!(
+            e.ends_with(".csv:2:9: byte 0xb0 is not UTF-8: save the file as UTF-8 (a Latin-1 '°' or 'µ' is one such byte)"),
+            "{end:?}: {e}"
+        );
+    }
+    // At the start of a line, after each kind of end.
+    for (text, place) in [
+        (&b"a\r\n\xb5"[..], ":2:1:"),
+        (b"a\r\r\xb5", ":3:1:"),
+        (b"\xb5", ":1:1:"),
+    ] {
+        let path = std::env::temp_dir().join(format!("hyst-latin1s-{}.csv", std::process::id()));
+        std::fs::write(&path, text).unwrap();
+        let e = read(&path, &ReadOptions::default())
+            .unwrap_err()
+            .to_string();
+        std::fs::remove_file(&path).unwrap();
+        assert!(e.contains(&format!(".csv{place} byte 0xb5")), "{e}");
+    }
 }
 
 #[test]
