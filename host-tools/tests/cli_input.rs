@@ -983,7 +983,7 @@ fn progress_reaches_a_log_as_plain_lines() {
 #[test]
 fn a_candidate_effect_parameter_is_held_when_it_is_added() {
     let data = write("column-held.csv", &column_record());
-    let added = |fixes: &[&str]| -> u64 {
+    let added = |fixes: &[&str]| -> (u64, String) {
         let mut args = vec!["diagnose", &data, "--candidates", "pinching", "--json"];
         for f in fixes {
             args.extend(["--fix", f]);
@@ -992,11 +992,31 @@ fn a_candidate_effect_parameter_is_held_when_it_is_added() {
         let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
         assert_eq!(v["model"], "bw", "{v}");
         assert_eq!(v["suspects"][0]["effect"], "pinching", "{v}");
-        v["suspects"][0]["added_parameters"].as_u64().unwrap()
+        let evidence = v["suspects"][0]["evidence"].as_str().unwrap().to_string();
+        (
+            v["suspects"][0]["added_parameters"].as_u64().unwrap(),
+            evidence,
+        )
     };
-    assert_eq!(added(&[]), 6);
-    assert_eq!(added(&["zeta0=0.3"]), 5);
-    assert_eq!(added(&["zeta0=0.3", "lambda=0.5", "alpha=0.1"]), 4);
+    let (six, words) = added(&[]);
+    assert_eq!(six, 6);
+    assert!(
+        words.starts_with("Adding pinching (6 parameters) "),
+        "{words}"
+    );
+    let (five, words) = added(&["zeta0=0.3"]);
+    assert_eq!(five, 5);
+    assert!(
+        words.starts_with("Adding pinching (5 parameters, with zeta0 = 0.3 held) "),
+        "{words}"
+    );
+    let (four, words) = added(&["zeta0=0.3", "lambda=0.5", "alpha=0.1"]);
+    assert_eq!(four, 4);
+    assert!(
+        words
+            .starts_with("Adding pinching (4 parameters, with zeta0 = 0.3 and lambda = 0.5 held) "),
+        "{words}"
+    );
 
     let e = err(hyst(&[
         "diagnose",

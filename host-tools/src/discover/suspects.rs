@@ -529,9 +529,20 @@ pub fn weigh(
             let significant = in_best && (delta < SIGNIFICANT_BIC || leads);
             let nrmse_with = single.cost.sqrt();
             let added = single.k.saturating_sub(base.k);
+            let held: Vec<String> = options
+                .held
+                .iter()
+                .filter(|(n, _)| effect.params().iter().any(|p| p.name == n.as_str()))
+                .map(|(n, v)| format!("{n} = {v}"))
+                .collect();
+            let held = if held.is_empty() {
+                String::new()
+            } else {
+                format!(", with {} held", held.join(" and "))
+            };
             let mut evidence = if single.fit.is_some() {
                 format!(
-                    "Adding {} ({} parameter{}) takes the NRMSE from {:.4} to {:.4}. ",
+                    "Adding {} ({} parameter{}{held}) takes the NRMSE from {:.4} to {:.4}. ",
                     effect.name(),
                     added,
                     if added == 1 { "" } else { "s" },
