@@ -402,6 +402,21 @@ proptest! {
         }
     }
 
+    /// A path of random legs gives the same state whether each leg is one
+    /// step or many (`step_size_does_not_matter` on random histories).
+    #[test]
+    fn random_legs_in_one_step_or_many(legs in prop::collection::vec(-16.0f64..16.0, 1..40)) {
+        let mut coarse: Phm<f64, 4, 16> = Phm::new(params());
+        let mut fine: Phm<f64, 4, 16> = Phm::new(params());
+        for x in legs {
+            drive(&mut coarse, x, 1);
+            drive(&mut fine, x, 211);
+            let (a, b) = (coarse.response(), fine.response());
+            prop_assert!((a.force - b.force).abs() < 1e-9, "{}: {:?} vs {:?}", x, a, b);
+            prop_assert_eq!(coarse.committed().kind(), fine.committed().kind());
+        }
+    }
+
     /// The same walks in f32 and fixed point never fail either and stay
     /// inside the envelope (checked in f64 with the arithmetic's resolution).
     #[test]
