@@ -61,11 +61,13 @@ pub fn run(args: DiscoverArgs) -> Result<()> {
     );
     beyond.slip = slip::of_ladder(&discovery, beyond.slip);
     bar.finish();
+    let labels: Vec<String> = discovery.rungs.iter().map(|r| r.label()).collect();
     let rungs: Vec<PlotRung> = discovery
         .rungs
         .iter()
-        .map(|r| PlotRung {
-            label: &r.model,
+        .zip(&labels)
+        .map(|(r, label)| PlotRung {
+            label,
             params: r.params,
             nrmse: r.nrmse,
             delta_bic: r.delta_bic,
@@ -116,7 +118,7 @@ pub fn run(args: DiscoverArgs) -> Result<()> {
                 .map_or_else(|| "-".to_string(), |d| format!("{d:.0}"));
             outln!(
                 "{:<44} {:>6} {:>9.4} {:>8.1}% {:>10}",
-                r.model,
+                r.label(),
                 r.params,
                 r.nrmse,
                 100.0 * r.energy_error,

@@ -137,10 +137,12 @@ pub fn diagnosis_sections(
 
 /// The ladder figure and table.
 pub fn ladder_section(page: &mut Report, rungs: &[Rung]) -> Result<()> {
+    let labels: Vec<String> = rungs.iter().map(Rung::label).collect();
     let plot_rungs: Vec<PlotRung> = rungs
         .iter()
-        .map(|r| PlotRung {
-            label: &r.model,
+        .zip(&labels)
+        .map(|(r, label)| PlotRung {
+            label,
             params: r.params,
             nrmse: r.nrmse,
             delta_bic: r.delta_bic,
@@ -150,7 +152,7 @@ pub fn ladder_section(page: &mut Report, rungs: &[Rung]) -> Result<()> {
     let mut t = Table::new(&["Model", "Parameters", "NRMSE", "Energy error", "ΔBIC"]);
     for r in rungs {
         t.row(vec![
-            r.model.clone().into(),
+            r.label().into(),
             r.params.into(),
             r.nrmse.into(),
             r.energy_error.into(),
@@ -162,7 +164,7 @@ pub fn ladder_section(page: &mut Report, rungs: &[Rung]) -> Result<()> {
     page.section("The error falling")
         .figure(
             &fig,
-            "NRMSE as effects are added, and the BIC change of each step.",
+            "NRMSE as effects are added (and taken away, marked -effect, where the final model did not need one), and the BIC change of each step.",
         )
         .table(&t);
     Ok(())

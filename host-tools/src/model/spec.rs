@@ -136,6 +136,24 @@ impl ModelSpec {
         }
     }
 
+    /// The spec with `effect` removed.
+    pub fn without(self, effect: EffectRef) -> Self {
+        match effect {
+            EffectRef::Builtin(k) => ModelSpec {
+                effects: self
+                    .effects
+                    .iter()
+                    .filter(|e| *e != k)
+                    .fold(EffectSet::NONE, EffectSet::with),
+                ..self
+            },
+            EffectRef::Custom(i) => ModelSpec {
+                custom: self.custom & !(1 << i),
+                ..self
+            },
+        }
+    }
+
     /// The effects in the spec, built-in first.
     pub fn effects(&self) -> Vec<EffectRef> {
         EffectRef::all()
