@@ -5,7 +5,6 @@
 
 use hyst::discover::ladder::{redundant, Step};
 use hyst::discover::synthetic::{record, Noise, Path};
-use hyst::discover::Diagnosis;
 use hyst::fit::problem::Problem;
 use hyst::fit::run::{self, Method, Quiet};
 use hyst::model::{EffectRef, ModelSpec};
@@ -23,14 +22,7 @@ fn final_step(hidden: &[EffectKind], seed: u64) -> Step {
     let fixed = [("nu0".to_string(), 1.0), ("eta0".to_string(), 1.0)];
     let problem = Problem::new(spec, exp, &fixed).unwrap();
     let outcome = run::fit(&problem, Method::Auto, &problem.par.default_start(), &Quiet).unwrap();
-    let diagnosis = Diagnosis::new(&problem, &outcome).unwrap();
-    Step {
-        spec,
-        problem,
-        outcome,
-        diagnosis,
-        suspects: vec![],
-    }
+    Step::diagnosed(problem, outcome).unwrap()
 }
 
 #[test]

@@ -183,14 +183,7 @@ fn a_gap_found_on_the_first_model_stands_when_the_ladder_papers_over_it() {
         let problem = Problem::new(spec, exp.clone(), &[]).unwrap();
         let outcome =
             run::fit(&problem, Method::Auto, &problem.par.default_start(), &Quiet).unwrap();
-        let diagnosis = Diagnosis::new(&problem, &outcome).unwrap();
-        Step {
-            spec,
-            problem,
-            outcome,
-            diagnosis,
-            suspects: vec![],
-        }
+        Step::diagnosed(problem, outcome).unwrap()
     };
     let pinched = ModelSpec::BW.with(EffectRef::Builtin(EffectKind::Pinching));
     let ladder = Discovery {

@@ -84,6 +84,21 @@ pub struct Step {
     pub suspects: Vec<Suspect>,
 }
 
+impl Step {
+    /// A model fitted elsewhere as a step, diagnosed, with no candidate
+    /// weighed (for [`redundant`] or [`crate::discover::slip::of_ladder`]).
+    pub fn diagnosed(problem: Problem, outcome: Outcome) -> Result<Self> {
+        let diagnosis = Diagnosis::new(&problem, &outcome)?;
+        Ok(Step {
+            spec: problem.par.spec,
+            problem,
+            outcome,
+            diagnosis,
+            suspects: vec![],
+        })
+    }
+}
+
 /// The result of a discovery run.
 pub struct Discovery {
     /// The ladder, first model first.
