@@ -138,13 +138,7 @@ pub struct Redundant {
 pub fn redundant(step: &Step, keep: &[EffectRef], earlier: &[Step]) -> Option<Redundant> {
     let problem = &step.problem;
     let spec = problem.par.spec;
-    let residual: Vec<f64> = problem
-        .predict(&step.outcome.x)?
-        .output
-        .iter()
-        .zip(&problem.exp.output)
-        .map(|(a, b)| a - b)
-        .collect();
+    let residual = suspects::residual(problem, &step.outcome.x)?;
     let floor = step.diagnosis.segmentation.cycles().half_cycles().len();
     let n_eff = effective_n(&residual, problem.dim(), floor);
     let full = bic(step.outcome.scores.nrmse.powi(2), problem.dim(), n_eff);
@@ -159,7 +153,7 @@ pub fn redundant(step: &Step, keep: &[EffectRef], earlier: &[Step]) -> Option<Re
                 .par
                 .fixed
                 .iter()
-                .filter(|(k, _)| !e.params().iter().any(|p| p.name == **k))
+                .filter(|(k, _)| !e.owns(k))
                 .map(|(k, v)| (k.to_string(), *v))
                 .collect();
             let p = Problem::new(smaller, problem.exp.clone(), &fixed).ok()?;

@@ -169,7 +169,7 @@ pub fn refit(
         .free
         .iter()
         .enumerate()
-        .filter(|(_, f)| effect.params().iter().any(|p| p.name == f.spec.name))
+        .filter(|(_, f)| effect.owns(f.spec.name))
         .map(|(i, _)| i)
         .collect();
     // Warm start, then draws of the new parameters in the middle half of
@@ -272,17 +272,21 @@ struct Fitted {
     fit: Option<(Problem, Outcome)>,
 }
 
+/// Model output less measured output at the normalised point `x`, whose
+/// lag-one correlation sets the effective sample size.
+pub(crate) fn residual(problem: &Problem, x: &[f64]) -> Option<Vec<f64>> {
+    let p = problem.predict(x)?;
+    Some(
+        p.output
+            .iter()
+            .zip(&problem.exp.output)
+            .map(|(a, b)| a - b)
+            .collect(),
+    )
+}
+
 fn fitted(effects: Vec<EffectRef>, problem: Problem, outcome: Outcome) -> Fitted {
-    let residual: Vec<f64> = problem
-        .predict(&outcome.x)
-        .map(|p| {
-            p.output
-                .iter()
-                .zip(&problem.exp.output)
-                .map(|(a, b)| a - b)
-                .collect()
-        })
-        .unwrap_or_default();
+    let residual = residual(&problem, &outcome.x).unwrap_or_default();
     Fitted {
         effects,
         cost: outcome.scores.nrmse.powi(2),
@@ -532,7 +536,7 @@ pub fn weigh(
             let held: Vec<String> = options
                 .held
                 .iter()
-                .filter(|(n, _)| effect.params().iter().any(|p| p.name == n.as_str()))
+                .filter(|(n, _)| effect.owns(n))
                 .map(|(n, v)| format!("{n} = {v}"))
                 .collect();
             let held = if held.is_empty() {
