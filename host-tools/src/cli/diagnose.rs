@@ -56,8 +56,11 @@ pub struct Common {
 }
 
 impl Common {
-    /// The weighing options of these arguments.
-    pub fn weigh_options(&self) -> Result<WeighOptions> {
+    /// The `--fix` values of the model's own parameters, and the weighing
+    /// options: the candidates, and the values held for their parameters
+    /// when they are added. A parameter of an effect that is neither in the
+    /// model nor a candidate is refused.
+    fn fixes_and_options(&self) -> Result<(Fixes, WeighOptions)> {
         let candidates = if self.candidates.is_empty() {
             None
         } else {
@@ -79,29 +82,18 @@ impl Common {
             }
             Some(list)
         };
-        let (_, held) = self.split_fix(candidates.as_deref())?;
-        Ok(WeighOptions {
-            candidates,
-            held,
-            ..WeighOptions::default()
-        })
-    }
-
-    /// `--fix` split into the model's own parameters and those of candidate
-    /// effects (`candidates`, or the default ones), which are held when their
-    /// effect is added. A parameter of an effect that is neither is refused.
-    fn split_fix(&self, candidates: Option<&[EffectRef]>) -> Result<(Fixes, Fixes)> {
-        let candidates = candidates.map_or_else(|| default_candidates(self.model), <[_]>::to_vec);
-        let owns = |e: &EffectRef, name: &str| e.params().iter().any(|p| p.name == name);
+        let weighed = candidates
+            .clone()
+            .unwrap_or_else(|| default_candidates(self.model));
         let model_has = |name: &str| self.model.params().iter().any(|p| p.name == name);
         let (mut own, mut held) = (vec![], vec![]);
         for (name, value) in &self.fix {
             if model_has(name) {
                 own.push((name.clone(), *value));
-            } else if candidates.iter().any(|e| owns(e, name)) {
+            } else if weighed.iter().any(|e| e.owns(name)) {
                 held.push((name.clone(), *value));
-            } else if let Some(e) = EffectRef::all().into_iter().find(|e| owns(e, name)) {
-                let names: Vec<&str> = candidates.iter().map(|e| e.name()).collect();
+            } else if let Some(e) = EffectRef::all().into_iter().find(|e| e.owns(name)) {
+                let names: Vec<&str> = weighed.iter().map(|e| e.name()).collect();
                 bail!(
                     "cannot fix `{name}`: it is a parameter of {}, which is neither in the model {} \
                      nor among the candidate effects ({}); add it to --candidates or to --model",
@@ -113,7 +105,12 @@ impl Common {
                 own.push((name.clone(), *value));
             }
         }
-        Ok((own, held))
+        let options = WeighOptions {
+            candidates,
+            held,
+            ..WeighOptions::default()
+        };
+        Ok((own, options))
     }
 }
 
@@ -137,6 +134,8 @@ pub struct Initial {
     pub time: Option<Vec<f64>>,
     /// What the reader did to a noisy displacement.
     pub monotone: Option<Monotone>,
+    /// How to weigh the candidate effects.
+    pub options: WeighOptions,
 }
 
 /// Fits (or evaluates the given parameters of) the model on the record.
@@ -150,20 +149,13 @@ pub fn initial_fit(common: &Common, params: Option<&Path>, bar: &Bar) -> Result<
         time,
         monotone,
     } = load_timed(&common.data, &common.read, mass, forcing)?;
-    let options = common.weigh_options()?;
-    let (own, _) = common.split_fix(options.candidates.as_deref())?;
+    let (own, options) = common.fixes_and_options()?;
     let problem =
         Problem::new(common.model, exp, &own).with_context(|| common.data.display().to_string())?;
     // A held value the richer model refuses (`--fix zeta0=7`) is named now,
     // not met as a candidate that cannot be fitted.
-    let candidates = options
-        .candidates
-        .unwrap_or_else(|| default_candidates(common.model));
-    for e in candidates {
-        let held = options
-            .held
-            .iter()
-            .filter(|(n, _)| e.params().iter().any(|p| p.name == n.as_str()));
+    for e in EffectRef::all() {
+        let held = options.held.iter().filter(|(n, _)| e.owns(n));
         let fixed: Fixes = own.iter().chain(held).cloned().collect();
         if fixed.len() > own.len() {
             Problem::new(common.model.with(e), problem.exp.clone(), &fixed).with_context(|| {
@@ -191,6 +183,7 @@ pub fn initial_fit(common: &Common, params: Option<&Path>, bar: &Bar) -> Result<
         outcome,
         time,
         monotone,
+        options,
     })
 }
 
@@ -363,10 +356,11 @@ pub fn run(args: DiagnoseArgs) -> Result<()> {
         outcome,
         time,
         monotone,
+        options,
     } = initial_fit(&args.common, args.params.as_deref(), &bar)?;
     let d = Diagnosis::new(&problem, &outcome)?;
     bar.status("weighing the candidate effects");
-    let suspects = weigh(&problem, &outcome, &d, &args.common.weigh_options()?);
+    let suspects = weigh(&problem, &outcome, &d, &options);
     let beyond = Beyond::check(&problem, &outcome, &d, time.as_deref(), monotone);
     bar.finish();
     if let Some(path) = &args.common.report {

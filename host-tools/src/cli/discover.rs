@@ -32,8 +32,8 @@ pub fn run(args: DiscoverArgs) -> Result<()> {
         outcome,
         time,
         monotone,
+        options,
     } = initial_fit(&args.common, None, &bar)?;
-    let options = args.common.weigh_options()?;
     bar.status("weighing the candidate effects");
     let discovery = discover(problem, outcome, &options, |step| {
         let top = step.suspects.iter().find(|s| s.significant);

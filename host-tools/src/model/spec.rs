@@ -45,6 +45,11 @@ impl EffectRef {
             EffectRef::Custom(i) => custom::registered()[i].params(),
         }
     }
+    /// Whether `name` is one of its parameters (names are unique across
+    /// effects: registration refuses a taken one).
+    pub fn owns(self, name: &str) -> bool {
+        self.params().iter().any(|p| p.name == name)
+    }
     /// One sentence on what it models.
     pub fn doc(self) -> &'static str {
         match self {
