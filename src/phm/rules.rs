@@ -200,6 +200,14 @@ pub struct Level<S> {
 }
 
 impl<S: Scalar> Level<S> {
+    /// Whether an unloading from twist `x` (magnitude) is counted by
+    /// [`count_unloading`](Self::count_unloading): the direction has cracked,
+    /// `x` is past cracking, and it is a first level, a new one or within the
+    /// band `(1 +/- band) theta_m` (at or above its lower edge).
+    pub(crate) fn counts(&self, x: S, theta_c: S, band: S) -> bool {
+        self.cracked && x > theta_c && (self.cycles == 0 || !(x < self.twist - self.twist * band))
+    }
+
     /// Counts an unloading from twist `x`, torque `t` (magnitudes) with the
     /// thesis' rule for n (§5.2.3 rule 5): n = 1 at a new level, incremented
     /// for an unloading within `(1 +/- band) theta_m`. Gaps G3/G4: an
@@ -215,6 +223,8 @@ impl<S: Scalar> Level<S> {
     /// G6), so that `theta_m > theta_c` always holds where eqs 4-6 use it.
     /// n stops at [`MAX_CYCLES`]: a further unloading within the band still
     /// updates `theta_m` and `T_m`.
+    ///
+    /// [`counts`](Self::counts) says beforehand whether it will count.
     pub(crate) fn count_unloading(
         &mut self,
         (x, t): (S, S),
@@ -222,19 +232,17 @@ impl<S: Scalar> Level<S> {
         theta_c: S,
         band: S,
     ) {
-        if !(self.cracked && x > theta_c) {
+        if !self.counts(x, theta_c, band) {
             return;
         }
-        let hi = self.twist + self.twist * band;
-        let lo = self.twist - self.twist * band;
-        if self.cycles == 0 || x > hi {
+        if self.cycles == 0 || x > self.twist + self.twist * band {
             *self = Level {
                 twist: x,
                 torque: t,
                 cycles: 1,
                 cracked: true,
             };
-        } else if !(x < lo) {
+        } else {
             self.cycles = self.cycles.saturating_add(1).min(MAX_CYCLES);
             if x < self.twist {
                 self.torque = at_theta_m(self.twist);

@@ -249,9 +249,10 @@ pub fn inner_cycle_returns<S: Scalar>() {
     let t72 = t7 + (20.0 - t7) * 0.2;
     close(torque(&el), t72, "on the chord");
     close(el.response().tangent, 20.0 - t7, "chord slope");
-    // Unloading from the chord (7.2 < 0.95 * 8: not counted), capped slope 10.
+    // Unloading from the chord (7.2 < 0.95 * 8: not counted): back along it
+    // towards where it began (gap G3).
     drive(&mut el, tw(71, 10), 1);
-    close(torque(&el), t72 - 1.0, "inner unloading");
+    close(torque(&el), t72 - (20.0 - t7) * 0.1, "inner unloading");
     assert_eq!(el.memory_depth(), 3);
     // Reloading: the chord back to (7.2, t72), then the outer chord resumes.
     drive(&mut el, tw(72, 10), 1);
