@@ -54,6 +54,11 @@ pub struct Branch<S> {
     pub(crate) n: u8,
     /// Index of the first vertex at zero torque or beyond (rule branches).
     pub(crate) zero: u8,
+    /// Index of the first vertex at or past both zero torque and zero twist
+    /// (torque and twist on the side the branch reloads towards). Passing it
+    /// forgets the remembered branches (gap G8): until then a reversal goes
+    /// back to where the branch began (G3, G9).
+    pub(crate) across: u8,
     /// `[x, y, k]` of each vertex: its coordinates and the slope from it to
     /// the next one (for the last vertex, the slope of the ray).
     pub(crate) v: [[S; 3]; VERTICES],
@@ -69,6 +74,7 @@ impl<S: Scalar> Branch<S> {
             dir,
             n: 0,
             zero: u8::MAX,
+            across: u8::MAX,
             v: [[S::ZERO; 3]; VERTICES],
             contact: S::MAX,
         }
@@ -82,6 +88,9 @@ impl<S: Scalar> Branch<S> {
         b.n = 1;
         if !(start[1] < S::ZERO) {
             b.zero = 0;
+        }
+        if !(start[0] < S::ZERO || start[1] < S::ZERO) {
+            b.across = 0;
         }
         b
     }
@@ -133,6 +142,9 @@ impl<S: Scalar> Branch<S> {
         self.v[i][1] = y;
         if self.zero == u8::MAX && !(y < S::ZERO) {
             self.zero = i as u8;
+        }
+        if self.across == u8::MAX && !(x < S::ZERO || y < S::ZERO) {
+            self.across = i as u8;
         }
         self.n += 1;
     }
@@ -345,6 +357,8 @@ mod tests {
         assert_eq!(b.n, 3);
         assert!((cap - 5.5 / 2.8).abs() < 1e-15);
         assert_eq!(b.zero, 2);
+        // Zero torque at x = -1: the twist has not yet crossed zero.
+        assert_eq!(b.across, u8::MAX);
     }
 
     /// Contact of a rising line with the bound (1,5),(4,6.5),(8,5.5):
@@ -380,6 +394,8 @@ mod tests {
         b.push_rising([4.0, 20.0], 5.0);
         b.finish(&bound);
         assert_eq!(b.zero, 1);
+        // Twist zero at the start, torque zero on the first segment.
+        assert_eq!(b.across, 1);
         // The line y = 5 x - 1e-9 (to 3e-10) meets the bound
         // 5 + 0.5 (x - 1) at x = (4.5 + 1e-9) / 4.5.
         let want = (4.5 + 1e-9) / 4.5;

@@ -284,19 +284,23 @@ impl<S: Scalar, const N: usize, const M: usize> Phm<S, N, M> {
         let x = signed(d, st.twist);
         let theta_c = self.params.curves()[from.index()].cracking()[0];
         let band = c.0[rules::idx::CYCLE_BAND];
-        // An unloading from a chord (a partial reloading) that the counter
-        // does not count closes an inner cycle the other way round (gaps G3,
-        // G8 in docs/phm.md):
-        // it goes back along the chord to where the chord began, where the
-        // branch left there resumes, as a partial unloading's chord does.
-        // By the rules, as if from the primary curve, its line could run
-        // flatter than the chord and above it on the way back, so the
-        // excursion never closed: 0 -> 8 -> 2 -> 3 -> 2 on the test curve
-        // came back to 2 at a torque of 1.66 instead of 0.04, and reached
-        // the primary curve at -8 for 8.1 less work than without it (found
-        // by review). One the counter counts is a repeated cycle: the rules.
+        // Two unloadings go back to where the branch followed began and
+        // resume the branch left there, as a reloading before zero torque
+        // does (gaps G3, G8 and G9 in docs/phm.md):
+        // - from a chord (a partial reloading) that the counter does not
+        //   count: by the rules, as if from the primary curve, its line could
+        //   run flatter than the chord and above it, so the excursion never
+        //   closed (0 -> 8 -> 2 -> 3 -> 2 on the test curve came back to 2 at
+        //   a torque of 1.66 instead of 0.04; found by review). One the
+        //   counter counts is a repeated cycle: the rules;
+        // - from a rule branch whose torque has crossed zero while its twist
+        //   has not (x <= 0): eqs 1-3 would take theta_m < 0, crept to zero
+        //   torque and reloaded inside the path they came up on; cycles
+        //   repeated between such a point and the branch's start returned
+        //   energy (-1.28 a cycle between -4.5 and -1 after -11.5, -0.625).
         let retrace = st.kind == Kind::Chord && !levels[from.index()].counts(x, theta_c, band);
-        let branch = if t > S::ZERO && !retrace {
+        let back = retrace || (st.kind == Kind::Rule && !(x > S::ZERO));
+        let branch = if t > S::ZERO && !back {
             // Unloading: rules 2-4 from this point.
             let on_path = |xm: S| {
                 if current.branch.kind == Kind::Envelope || !(xm < current.branch.contact) {
@@ -308,7 +312,7 @@ impl<S: Scalar, const N: usize, const M: usize> Phm<S, N, M> {
             levels[from.index()].count_unloading((x, t), on_path, theta_c, band);
             rules::unloading_branch(c, self.params.curves(), from, [x, t], &levels)
         } else {
-            // Reloading before zero torque, or unloading from a chord: back
+            // Reloading before zero torque, or one of the two above: back
             // to where the branch followed began.
             let to = [-current.branch.v[0][0], -current.branch.v[0][1]];
             let from = [signed(dir, st.twist), signed(dir, st.torque)];
@@ -417,7 +421,7 @@ impl<S: Scalar, const N: usize, const M: usize> Phm<S, N, M> {
             while st.seg + 1 < b.n && x > b.v[st.seg as usize + 1][0] {
                 st.seg += 1;
                 match st.kind {
-                    Kind::Rule if st.seg == b.zero => pending.clear(),
+                    Kind::Rule if st.seg == b.across => pending.clear(),
                     Kind::Chord if st.seg + 1 == b.n => {
                         match Self::pop_two(&self.memory, pending) {
                             Some(f) => resumed = Some(f),
