@@ -57,6 +57,17 @@ fn work_along<const N: usize, const M: usize>(el: &mut Phm<f64, N, M>, to: f64, 
     w
 }
 
+/// Uniform numbers in [0, 1) from a xorshift generator with `seed`: the
+/// random histories of the passivity searches, the same on every run.
+fn uniform(mut seed: u64) -> impl FnMut() -> f64 {
+    move || {
+        seed ^= seed << 13;
+        seed ^= seed >> 7;
+        seed ^= seed << 17;
+        (seed >> 11) as f64 / (1u64 << 53) as f64
+    }
+}
+
 /// Closed inner cycles dissipate: R -> Q -> R with Q before zero torque
 /// returns to R's state, and the work over it is not negative, also for
 /// nested cycles, on every kind of branch (primary curve, rule branches pre-
@@ -73,13 +84,7 @@ fn closed_inner_cycles_are_passive() {
         &[8.0, -8.0, 8.0, -8.0, 3.0],
     ];
     let mut checked = 0;
-    let mut rng = 0x2545F4914F6CDD1Du64;
-    let mut uniform = move || {
-        rng ^= rng << 13;
-        rng ^= rng >> 7;
-        rng ^= rng << 17;
-        (rng >> 11) as f64 / (1u64 << 53) as f64
-    };
+    let mut uniform = uniform(0x2545F4914F6CDD1Du64);
     for base in bases {
         for _ in 0..40 {
             let mut el: Phm<f64, 4, 16> = Phm::new(params());
@@ -152,13 +157,7 @@ fn closed_inner_cycles_are_passive() {
 /// follow the rules.
 #[test]
 fn an_uncounted_excursion_along_a_chord_closes_where_it_began() {
-    let mut rng = 0x9E3779B97F4A7C15u64;
-    let mut uniform = move || {
-        rng ^= rng << 13;
-        rng ^= rng >> 7;
-        rng ^= rng << 17;
-        (rng >> 11) as f64 / (1u64 << 53) as f64
-    };
+    let mut uniform = uniform(0x9E3779B97F4A7C15u64);
     let (mut checked, mut counted) = (0, 0);
     for case in 0..15000 {
         let mut el: Phm<f64, 4, 16> = Phm::new(params());
@@ -232,13 +231,7 @@ fn an_uncounted_excursion_along_a_chord_closes_where_it_began() {
 /// to where its branch began (G9).
 #[test]
 fn repeated_cycles_dissipate() {
-    let mut rng = 0x1234_5678_9ABC_DEF1u64;
-    let mut uniform = move || {
-        rng ^= rng << 13;
-        rng ^= rng >> 7;
-        rng ^= rng << 17;
-        (rng >> 11) as f64 / (1u64 << 53) as f64
-    };
+    let mut uniform = uniform(0x1234_5678_9ABC_DEF1u64);
     let mut twist = move || ((uniform() * 24.0 - 12.0) * 8.0).round() / 8.0;
     let mut closed = 0;
     for case in 0..20000 {
