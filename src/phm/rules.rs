@@ -313,12 +313,17 @@ pub(crate) fn unloading_branch<S: Scalar, const N: usize>(
     let theta_y = other.yielding()[0];
     // Reloading segments are no stiffer than k_T1 (gap G10).
     let k1 = other.k1();
-    if level.cycles == 0 {
+    if !level.cracked {
         // Loading rule 2: towards the cracking point of the other direction.
         b.push_rising([xc, tc], k1);
-    } else if level.twist < theta_y {
-        // Loading rule 3: a straight line of slope k_Tr1 (eq. 4).
-        let k = k1 * v[idx::EQ4_A] * (level.twist / xc).powf(v[idx::EQ4_B]);
+    } else if level.cycles == 0 || level.twist < theta_y {
+        // Loading rule 3 ("when cracking load on both directions has been
+        // reached"): a straight line of slope k_Tr1 (eq. 4). A direction
+        // that reached its cracking torque without a counted unloading (it
+        // reversed at its cracking point, or on the torque cap below it, G6)
+        // is at theta_m = theta_c as far as eq. 4 is concerned.
+        let theta_m = if level.cycles == 0 { xc } else { level.twist };
+        let k = k1 * v[idx::EQ4_A] * (theta_m / xc).powf(v[idx::EQ4_B]);
         b.push_rising([x0 + xc, y0 + k * xc], k1);
     } else {
         // Loading rules 4-5: the pinched line through (theta_m, T_p) up to

@@ -298,6 +298,41 @@ fn repeated_cycles_dissipate() {
     );
 }
 
+/// Loading rule 3 applies "when cracking load on both directions has been
+/// reached" (§5.2.3), also when a direction reached it only at its cracking
+/// point, where the counter counts nothing (G4: only past `theta_c`): after
+/// 3, -1 (rule 2's line ends on the negative cracking point) and 3 again,
+/// the reloading towards the negative side follows eq. 4 with `theta_m =
+/// theta_c` from eq. 3a's residual twist. It used to take rule 2's line to the
+/// cracking point again: -5.87 at -0.3 after a reversal at -1, -7.46 after one
+/// at -1.001.
+#[test]
+fn a_direction_cracked_at_its_cracking_point_reloads_by_eq_4() {
+    let at = |r: f64| {
+        let mut el: Phm<f64, 4, 16> = Phm::new(params());
+        for x in [3.0, r, 3.0, -0.3] {
+            drive(&mut el, x, 100);
+        }
+        el.response().force
+    };
+    // Eq. 3a from theta_m = 3 (theta_c = 1): theta_su = 3 (0.2358 - 0.0015 * 3);
+    // eq. 4 at theta_m / theta_c = 1: k_Tr1 = 0.7513 * 10.
+    let theta_su = 3.0 * (0.2358 - 0.0015 * 3.0);
+    let want = -0.7513 * 10.0 * (theta_su + 0.3);
+    assert!(
+        (at(-1.0) - want).abs() < 1e-9,
+        "{} against {want}",
+        at(-1.0)
+    );
+    // Past the cracking point the counter counts: eq. 4 at 1.001, close by.
+    let past = -0.7513 * 10.0 * 1.001f64.powf(-0.786) * (theta_su + 0.3);
+    assert!(
+        (at(-1.001) - past).abs() < 1e-9,
+        "{} against {past}",
+        at(-1.001)
+    );
+}
+
 /// Rule 2 aims at the other direction's cracking point, a corner of its
 /// primary curve, so the first reloading meets the primary curve there and
 /// follows it (rule 6) in every arithmetic, whatever the rounding of the
