@@ -684,6 +684,43 @@ fn run<S: Scalar>(history: &[f64]) -> Vec<f64> {
 /// f32 and Q15.16 against f64 over the 3601 steps of the reference history
 /// (peak torque 6.5 kN): the bounds below are the measured worst cases
 /// (f32 1.8e-6 kN, fixed 1.8e-4 kN, see docs/phm.md) with a margin of 3 to 5.
+/// Random walks of 12 legs to ±12 on the test curve (peak 20), twists on a
+/// 2^-10 grid, 40 steps a leg: f32 and Q15.16 stay within 1e-4 and 1e-2 of
+/// f64 (measured 2026-11-30: 1.1e-5 and 1.9e-3). The rule choices at a
+/// reversal (counted or not, which side of zero) are thresholds that a
+/// rounding can flip; these walks found Q15.16 0.053 off (a review's 0.042),
+/// from reversals on the wrong side of zero that unloaded by eqs 1-3, before
+/// they went back along a chord (G9).
+#[test]
+fn random_walks_in_low_precision_track_f64() {
+    let mut uniform = uniform(0xDEAD_BEEF_1234_5678);
+    let grid = |t: f64| (t * 1024.0).round() / 1024.0;
+    let (mut worst_f32, mut worst_fixed) = (0.0f64, 0.0f64);
+    for _ in 0..2000 {
+        let mut a: Phm<f64, 4, 16> = Phm::new(params());
+        let mut b: Phm<f32, 4, 16> = Phm::new(params());
+        let mut c: Phm<Fixed, 4, 16> = Phm::new(params());
+        let mut from = 0.0;
+        for _ in 0..12 {
+            let to = grid(uniform() * 24.0 - 12.0);
+            for i in 1..=40 {
+                let t = grid(from + (to - from) * i as f64 / 40.0);
+                let ta = a.set_trial(t).unwrap().force;
+                let tb = b.set_trial(t as f32).unwrap().force as f64;
+                let tc = c.set_trial(Fixed::from_f64(t)).unwrap().force.to_f64();
+                a.commit();
+                b.commit();
+                c.commit();
+                worst_f32 = worst_f32.max((tb - ta).abs());
+                worst_fixed = worst_fixed.max((tc - ta).abs());
+            }
+            from = to;
+        }
+    }
+    std::println!("f32 {worst_f32:.2e}, Q15.16 {worst_fixed:.2e} from f64");
+    assert!(worst_f32 < 1e-4 && worst_fixed < 1e-2);
+}
+
 #[test]
 fn low_precision_tracks_f64_on_the_reference_history() {
     let h = reference_history();
