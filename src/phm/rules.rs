@@ -13,8 +13,9 @@
 //!   T_ur2/T_m         =  -                          a mu_y + b         (2b)
 //!   theta_su/theta_m  = a mu_c + b       (3a)       a mu_y + b         (3b)
 //! reloading towards a direction with level theta_m, torque T_m, count n
-//!   no level yet:   towards its cracking point (rule 2)
+//!   not cracked yet:   towards its cracking point (rule 2)
 //!   theta_m < theta_y: slope k_Tr1 / k_T1 = a mu_c^b                  (4)
+//!                      (cracked without a counted level: theta_m = theta_c)
 //!   theta_m >= theta_y: through (theta_m, T_p) up to theta_cr, then to
 //!                       (theta_m, T'_m), then on to the primary curve
 //!     theta_cr/theta_m = (a n + b) mu_y + (c n + d)                   (5a)
