@@ -7,7 +7,9 @@ mod cli;
 
 use cli::{err, hyst, ok, tmp, write};
 use hyst::data::{read, ReadOptions, Record};
+use hyst::fit::phm::{first_excursions, fit_envelope, idealise, valid_start, PhmProblem};
 use hyst::model::{simulate_phm, PhmFile};
+use hysteresis::phm::{Coefficients, Direction, PhmParams};
 use serde_json::Value;
 use std::process::Output;
 
@@ -132,6 +134,44 @@ fn simulate_writes_what_the_element_computes() {
     }
 }
 
+/// `clean` with deterministic noise of standard deviation 1: sums of 12
+/// uniforms of an LCG started at `seed`.
+fn with_noise(clean: &[f64], seed: u64) -> Vec<f64> {
+    let mut state = seed;
+    let mut uniform = || {
+        state = state
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        (state >> 11) as f64 / (1u64 << 53) as f64
+    };
+    clean
+        .iter()
+        .map(|t| t + (0..12).map(|_| uniform()).sum::<f64>() - 6.0)
+        .collect()
+}
+
+/// [`TRUTH`] over [`history`]: the parameters, the twist, the clean torque
+/// and the torque with the noise of [`with_noise`] from `seed`.
+fn noisy_truth(seed: u64) -> (PhmParams<f64, 8>, Vec<f64>, Vec<f64>, Vec<f64>) {
+    let p = write(&format!("truth_{seed}.json"), TRUTH);
+    let truth = PhmFile::read(&p).unwrap().params;
+    let x = history();
+    let clean = simulate_phm(&truth, &x).unwrap().torque;
+    let noisy = with_noise(&clean, seed);
+    (truth, x, clean, noisy)
+}
+
+/// A twist-torque record file (deg, kN m) named `name`.
+fn record_file(name: &str, twist: &[f64], torque: &[f64]) -> String {
+    write(
+        name,
+        &csv(
+            "twist (deg),torque (kN m)",
+            twist.iter().zip(torque).map(|(a, b)| format!("{a},{b}")),
+        ),
+    )
+}
+
 /// A record made by the PHM itself with noise of 1 kN m (about 1.5 % of the
 /// RMS torque): the fit from the idealised envelope and the thesis'
 /// coefficients finds a set that explains it as well as the truth does;
@@ -143,29 +183,8 @@ fn simulate_writes_what_the_element_computes() {
 /// with infinite standard errors.)
 #[test]
 fn fit_recovers_the_model_that_made_the_record() {
-    let p = write("truth_fit.json", TRUTH);
-    let truth = PhmFile::read(&p).unwrap().params;
-    let x = history();
-    let clean = simulate_phm(&truth, &x).unwrap().torque;
-    // Deterministic noise: sums of 12 uniforms (an LCG), standard deviation 1.
-    let mut state: u64 = 12345;
-    let mut uniform = || {
-        state = state
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        (state >> 11) as f64 / (1u64 << 53) as f64
-    };
-    let noisy: Vec<f64> = clean
-        .iter()
-        .map(|t| t + (0..12).map(|_| uniform()).sum::<f64>() - 6.0)
-        .collect();
-    let data = write(
-        "record.csv",
-        &csv(
-            "twist (deg),torque (kN m)",
-            x.iter().zip(&noisy).map(|(a, b)| format!("{a},{b}")),
-        ),
-    );
+    let (truth, x, clean, noisy) = noisy_truth(12345);
+    let data = record_file("record.csv", &x, &noisy);
     let fit = tmp("fit.json");
     let o = ok(hyst(&[
         "fit",
@@ -233,6 +252,53 @@ fn fit_recovers_the_model_that_made_the_record() {
         eprintln!("{name}: fit {g:.4} +- {s:.4}, truth {t:.4}");
         assert!((g - t).abs() < 3.0 * s, "{name}: {g} +- {s} vs {t}");
     }
+}
+
+/// With another noise draw the fit from the idealised start stops 3.8 %
+/// above the truth's NRMSE: it put the positive peak at a twist of 5.42,
+/// past the amplitude 5.0, where the truth has it at 4.2, and a local fit
+/// cannot move a breakpoint across an amplitude (the unloading from 5.0
+/// changes segment there). `hyst fit` also starts from each breakpoint moved
+/// to the neighbouring gaps between amplitudes, and the best of those
+/// explains the record as well as the truth does. (Of twelve noise draws,
+/// four stopped 3.5-4.6 % above the truth from the idealised start alone,
+/// all with that peak past 5.0; with the starts all twelve reach 0.990-0.994
+/// of the truth's NRMSE.)
+#[test]
+fn another_start_moves_a_breakpoint_across_an_amplitude() {
+    let (_, x, clean, noisy) = noisy_truth(3 * 7919);
+    let truth_nrmse = nrmse(&noisy, &clean);
+    // The idealised start alone, as the fit was before the other starts.
+    let curves: Vec<_> = [1.0, -1.0]
+        .map(|sign| {
+            let env = first_excursions(&x, &noisy, sign);
+            fit_envelope(&env, &valid_start(&idealise(&env).unwrap()))
+        })
+        .into();
+    let start = PhmParams::new(&curves[0], &curves[1], Coefficients::thesis()).unwrap();
+    let alone = PhmProblem::new(&x, &noisy, &start, &[])
+        .unwrap()
+        .solve(|_, _| {})
+        .unwrap();
+    let peak = alone.params.primary(Direction::Positive).points()[2][0];
+    eprintln!(
+        "idealised start alone: NRMSE {:.5} ({:.3} of the truth's), positive peak at {peak:.3}",
+        alone.nrmse,
+        alone.nrmse / truth_nrmse
+    );
+    assert!(alone.nrmse > 1.03 * truth_nrmse && peak > 5.0);
+
+    let data = record_file("record_amplitude.csv", &x, &noisy);
+    let o = ok(hyst(&["fit", &data, "--model", "phm-torsion", "--json"]));
+    let v: Value = serde_json::from_slice(&o.stdout).unwrap();
+    let fitted = v["nrmse"].as_f64().unwrap();
+    eprintln!("hyst fit: NRMSE {fitted:.5}, start: {}", v["start"]);
+    assert!(
+        fitted < truth_nrmse,
+        "{fitted} against the truth's {truth_nrmse}"
+    );
+    assert!(v["starts"].as_u64().unwrap() > 1);
+    assert!(v["start"].as_str().unwrap().contains("positive point 2"));
 }
 
 #[test]

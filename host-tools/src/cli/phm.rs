@@ -4,7 +4,10 @@
 use super::fit::{monotone_input, Bar, FitArgs};
 use super::simulate::SimulateArgs;
 use crate::data::{self, Channel, Quantity, ReadOptions, Record, Unit};
-use crate::fit::phm::{first_excursions, fit_envelope, idealise, valid_start, PhmProblem};
+use crate::fit::phm::{
+    amplitudes, breakpoint_starts, first_excursions, fit_envelope, idealise, valid_start,
+    PhmOutcome, PhmProblem,
+};
 use crate::fit::run::Progress;
 use crate::model::{phm_json, simulate_phm, PhmFile, PHM_MODEL, PHM_POINTS};
 use crate::report::plots::{loop_overlay, Quantity as Axis, Trace};
@@ -175,11 +178,51 @@ pub fn fit(args: &FitArgs) -> Result<()> {
         None => idealised_start(&args.data, &twist, &torque)?,
     };
     let problem = PhmProblem::new(&twist, &torque, &start, &args.fix)?;
+    // Without a start file, the idealised start's breakpoints may lie on the
+    // wrong side of an amplitude of the record, which a local fit cannot
+    // cross: other starts put each on the other sides (`breakpoint_starts`).
+    // Starts that `--fix` makes equal to the first are dropped.
+    let mut starts = vec![(None, problem)];
+    if start_file.is_none() {
+        let amps = [amplitudes(&twist, 1.0), amplitudes(&twist, -1.0)];
+        for (what, p) in breakpoint_starts(&start, [&amps[0], &amps[1]]) {
+            let moved = PhmProblem::new(&twist, &torque, &p, &args.fix)?;
+            if moved.free_start() != starts[0].1.free_start() {
+                starts.push((Some(what), moved));
+            }
+        }
+    }
     let bar = Bar::new(&format!("fit {PHM_MODEL} (lsq)"), args.json);
     let t0 = Instant::now();
-    let outcome = problem.solve(|i, nrmse| bar.improved(i, nrmse))?;
+    let n_starts = starts.len();
+    let mut best: Option<(Option<String>, PhmProblem, PhmOutcome)> = None;
+    let mut simulations = 0;
+    for (k, (what, problem)) in starts.into_iter().enumerate() {
+        if n_starts > 1 {
+            let from = what.as_deref().unwrap_or("idealised from the envelope");
+            bar.stage(&format!("start {} of {n_starts}: {from}", k + 1));
+        }
+        let outcome = match problem.solve(|i, nrmse| bar.improved(i, nrmse)) {
+            Ok(o) => o,
+            // The first start is the one a user would expect to work.
+            Err(e) if k == 0 => return Err(e),
+            Err(_) => continue,
+        };
+        simulations += outcome.evaluations;
+        if best.as_ref().is_none_or(|b| outcome.nrmse < b.2.nrmse) {
+            best = Some((what, problem, outcome));
+        }
+    }
     bar.finish();
     let seconds = t0.elapsed().as_secs_f64();
+    let (moved, problem, outcome) = best.expect("the first start's fit succeeded");
+    let start_text = match (&args.params, &moved) {
+        (Some(p), _) => p.display().to_string(),
+        (None, None) => format!("idealised from the envelope (best of {n_starts} starts)"),
+        (None, Some(m)) => {
+            format!("idealised from the envelope, then {m} (best of {n_starts} starts)")
+        }
+    };
     let points_std = |d: usize| json!(outcome.point_std[d]);
     let std: Map<String, Value> = outcome
         .std
@@ -189,10 +232,11 @@ pub fn fit(args: &FitArgs) -> Result<()> {
     let meta = json!({
         "data": args.data.display().to_string(),
         "method": "lsq",
-        "start": args.params.as_ref().map_or("idealised from the envelope".to_string(), |p| p.display().to_string()),
+        "start": start_text,
+        "starts": n_starts,
         "nrmse": outcome.nrmse,
         "iterations": outcome.iterations,
-        "simulations": outcome.evaluations,
+        "simulations": simulations,
         "seconds": seconds,
         "std": std,
         "primary_std": { "positive": points_std(0), "negative": points_std(1) },
@@ -217,8 +261,10 @@ pub fn fit(args: &FitArgs) -> Result<()> {
             "units": file["units"],
             "std": meta["std"],
             "primary_std": meta["primary_std"],
+            "start": start_text,
+            "starts": n_starts,
             "iterations": outcome.iterations,
-            "simulations": outcome.evaluations,
+            "simulations": simulations,
             "seconds": seconds,
             "identifiability": outcome.identifiability,
             "identifiability_summary": outcome.identifiability.summary(),
@@ -227,9 +273,10 @@ pub fn fit(args: &FitArgs) -> Result<()> {
         return Ok(());
     }
     outln!(
-        "model {PHM_MODEL}  method lsq  NRMSE {:.4e}  ({} iterations, {} simulations, {seconds:.2} s)",
-        outcome.nrmse, outcome.iterations, outcome.evaluations
+        "model {PHM_MODEL}  method lsq  NRMSE {:.4e}  ({} iterations, {simulations} simulations over {n_starts} starts, {seconds:.2} s)",
+        outcome.nrmse, outcome.iterations
     );
+    outln!("  start: {start_text}");
     for (d, dir) in [Direction::Positive, Direction::Negative]
         .into_iter()
         .enumerate()

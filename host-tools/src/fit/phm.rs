@@ -128,6 +128,72 @@ pub fn first_excursions(twist: &[f64], torque: &[f64], sign: f64) -> Vec<[f64; 2
     env
 }
 
+/// The amplitudes of one direction (`sign` +1 or -1): the largest twist of
+/// every excursion that went past the largest twist so far, as magnitudes,
+/// increasing. Between two amplitudes the record shows a breakpoint of the
+/// primary curve only through the rules' switches (eqs 1-3 change form at
+/// the yield twist, the unloading starts on the segment the reversal is on),
+/// so a fit cannot move a breakpoint across an amplitude.
+pub fn amplitudes(twist: &[f64], sign: f64) -> Vec<f64> {
+    let mut far = 0.0;
+    let mut out: Vec<f64> = vec![];
+    let mut prev: Option<usize> = None;
+    for (i, &x) in twist.iter().enumerate() {
+        let x = sign * x;
+        if x > far {
+            far = x;
+            if prev == Some(i.wrapping_sub(1)) {
+                out.pop();
+            }
+            out.push(x);
+            prev = Some(i);
+        }
+    }
+    out
+}
+
+/// Other starts for a fit from `start`: each breakpoint of a primary curve
+/// between cracking and the last point moved, one at a time, to the middle
+/// of the gap between `amplitudes` (of its direction, [`amplitudes`]) just
+/// below and just above the gap it lies in, keeping its torque; only valid
+/// curves. Each comes with what was moved. A local fit keeps a breakpoint
+/// on its side of every amplitude; these starts put it on the other sides.
+pub fn breakpoint_starts(
+    start: &PhmParams<f64, PHM_POINTS>,
+    amplitudes: [&[f64]; 2],
+) -> Vec<(String, PhmParams<f64, PHM_POINTS>)> {
+    let dirs = [Direction::Positive, Direction::Negative];
+    let curves = dirs.map(|d| start.primary(d).points().to_vec());
+    let mut out = vec![];
+    for (d, amps) in amplitudes.iter().enumerate() {
+        let pts = &curves[d];
+        let mut edges = vec![0.0];
+        edges.extend_from_slice(amps);
+        for j in 1..pts.len().saturating_sub(1) {
+            let t = pts[j][0];
+            let Some(k) = edges.windows(2).position(|w| w[0] <= t && t < w[1]) else {
+                continue;
+            };
+            for g in [k.checked_sub(1), Some(k + 1)].into_iter().flatten() {
+                let Some(w) = edges.get(g..g + 2) else {
+                    continue;
+                };
+                let mid = 0.5 * (w[0] + w[1]);
+                if !(pts[j - 1][0] < mid && mid < pts[j + 1][0]) {
+                    continue;
+                }
+                let mut moved = curves.clone();
+                moved[d][j][0] = mid;
+                if let Ok(p) = PhmParams::new(&moved[0], &moved[1], *start.coefficients()) {
+                    let what = format!("{} point {j} at twist {mid:.4}", side_name(d));
+                    out.push((what, p));
+                }
+            }
+        }
+    }
+    out
+}
+
 /// A primary curve idealised from the first-excursion envelope of one
 /// direction: cracking, yield, peak, last point.
 ///
@@ -572,5 +638,45 @@ mod tests {
             [[1.0, 5.0], [2.0, 6.0], [3.0, 6.5]]
         );
         assert_eq!(first_excursions(&twist, &torque, -1.0), [[1.0, 5.0]]);
+        assert_eq!(amplitudes(&twist, 1.0), [2.0, 3.0]);
+        assert_eq!(amplitudes(&twist, -1.0), [1.0]);
+    }
+
+    /// The curve (1, 10) (3, 14) (6, 15) (9, 12) with amplitudes 2, 4, 5,
+    /// 7, 8: yield (3) lies in the gap 2-4, so it moves to 1 (0-2, not past
+    /// cracking: dropped) and 4.5 (4-5); the peak (6) lies in 5-7, so it
+    /// moves to 4.5 (4-5) and 7.5 (7-8). The last point and cracking stay.
+    #[test]
+    fn breakpoints_move_to_the_neighbouring_gaps() {
+        let pts = [[1.0, 10.0], [3.0, 14.0], [6.0, 15.0], [9.0, 12.0]];
+        let start = PhmParams::new(&pts, &pts, Coefficients::thesis()).unwrap();
+        let amps = [2.0, 4.0, 5.0, 7.0, 8.0];
+        let starts = breakpoint_starts(&start, [&amps, &[]]);
+        let moved: Vec<_> = starts
+            .iter()
+            .map(|(what, p)| {
+                (
+                    what.as_str(),
+                    p.primary(Direction::Positive).points().to_vec(),
+                )
+            })
+            .collect();
+        let with = |j: usize, x: f64| {
+            let mut p = pts.to_vec();
+            p[j][0] = x;
+            p
+        };
+        assert_eq!(
+            moved,
+            [
+                ("positive point 1 at twist 4.5000", with(1, 4.5)),
+                ("positive point 2 at twist 4.5000", with(2, 4.5)),
+                ("positive point 2 at twist 7.5000", with(2, 7.5)),
+            ]
+        );
+        // The other direction has no amplitudes: nothing moves there.
+        assert!(starts
+            .iter()
+            .all(|(_, p)| p.primary(Direction::Negative).points() == pts));
     }
 }
