@@ -21,9 +21,12 @@
 //! # Inner cycles and memory
 //!
 //! The thesis' rules describe unloading from the primary curve and full
-//! reloading. A partial unloading that reverses before zero torque reloads
-//! along a chord back to the point where the unloading began and there
-//! resumes the branch it left (return-point memory). The branches to resume
+//! reloading. A partial unloading that reverses before zero torque (or after
+//! it, while the twist has not yet crossed zero) reloads along a chord back
+//! to the point where the unloading began and there resumes the branch it
+//! left (return-point memory); a partial reloading along such a chord that
+//! reverses before the cycle counter counts it goes back along the chord in
+//! the same way. Every cycle closed in this way dissipates. The branches to resume
 //! are kept in a stack of fixed capacity `M` (a `heapless::Deque`, capacity in
 //! the type); when it is full the oldest entry is dropped (O(1)) and counted
 //! in [`Phm::forgotten`] (gap G8 in `docs/phm.md`). The full list of decisions on the gaps the
