@@ -26,7 +26,8 @@
 //! to the point where the unloading began and there resumes the branch it
 //! left (return-point memory); a partial reloading along such a chord that
 //! reverses before the cycle counter counts it goes back along the chord in
-//! the same way. Every cycle closed in this way dissipates. The branches to resume
+//! the same way. No closed cycle the tests search returns energy
+//! (`docs/phm.md`, "Passivity"). The branches to resume
 //! are kept in a stack of fixed capacity `M` (a `heapless::Deque`, capacity in
 //! the type); when it is full the oldest entry is dropped (O(1)) and counted
 //! in [`Phm::forgotten`] (gap G8 in `docs/phm.md`). The full list of decisions on the gaps the
