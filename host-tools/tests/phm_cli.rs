@@ -205,6 +205,12 @@ fn fit_recovers_the_model_that_made_the_record() {
         fitted_nrmse < 1.1 * truth_nrmse,
         "{fitted_nrmse} vs {truth_nrmse}"
     );
+    // The fitted set is searched for closed cycles that return energy
+    // (model::phm_passivity): near the thesis' coefficients, none.
+    let passivity = &v["passivity"];
+    eprintln!("passivity: {passivity}");
+    assert!(passivity["cycles"].as_u64().unwrap() > 50);
+    assert_eq!(passivity["returning_energy"], 0);
 
     // Round trip: the written file simulates the record to the same NRMSE.
     let refit = ok(hyst(&[

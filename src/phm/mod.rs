@@ -65,11 +65,13 @@ mod params;
 pub mod rules;
 #[cfg(any(test, feature = "selftest"))]
 pub mod selftest;
+mod work;
 
 pub use backbone::{Backbone, BackboneError, BackboneRule, Direction};
 pub use branch::{Branch, Kind};
 pub use params::{PhmError, PhmParams};
 pub use rules::{CoefficientSpec, Coefficients, Level, MAX_CYCLES, SPECS};
+pub use work::work_along;
 
 use crate::element::{Element, Response, StepError};
 use crate::scalar::Scalar;

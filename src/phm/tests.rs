@@ -24,37 +24,9 @@ fn shared_cases_pass_in_every_arithmetic() {
     selftest::symmetric_response::<f64>();
 }
 
-/// Work `∫ T dθ` from the committed state along a monotone twist path to
-/// `to`, committed in steps of at most `h`. Torque is piecewise linear in
-/// twist, so each step is split where it is not linear (the midpoint is off
-/// the chord) until the trapezoid rule is exact.
+/// [`work_along`](super::work_along), unwrapped: these walks never fail.
 fn work_along<const N: usize, const M: usize>(el: &mut Phm<f64, N, M>, to: f64, h: f64) -> f64 {
-    fn piece<const N: usize, const M: usize>(el: &mut Phm<f64, N, M>, b: f64) -> f64 {
-        let (a, ta) = (el.displacement(), el.response().force);
-        let mid = 0.5 * (a + b);
-        let tm = el.set_trial(mid).unwrap().force;
-        let tb = el.set_trial(b).unwrap().force;
-        if (tm - 0.5 * (ta + tb)).abs() <= 1e-13 * (1.0 + ta.abs() + tb.abs())
-            || (b - a).abs() < 1e-9
-        {
-            el.commit();
-            return 0.5 * (ta + tb) * (b - a);
-        }
-        el.revert();
-        let w = piece(el, mid);
-        w + piece(el, b)
-    }
-    let mut w = 0.0;
-    while el.displacement() != to {
-        let x0 = el.displacement();
-        let step = if (to - x0).abs() <= h {
-            to
-        } else {
-            x0 + h * (to - x0).signum()
-        };
-        w += piece(el, step);
-    }
-    w
+    super::work_along(el, to, h).unwrap()
 }
 
 /// Uniform numbers in [0, 1) from a xorshift generator with `seed`: the

@@ -9,7 +9,7 @@ use crate::fit::phm::{
     PhmOutcome, PhmProblem,
 };
 use crate::fit::run::Progress;
-use crate::model::{phm_json, simulate_phm, PhmFile, PHM_MODEL, PHM_POINTS};
+use crate::model::{phm_json, phm_passivity, simulate_phm, PhmFile, PHM_MODEL, PHM_POINTS};
 use crate::report::plots::{loop_overlay, Quantity as Axis, Trace};
 use anyhow::{anyhow, bail, Context, Result};
 use hysteresis::phm::{Coefficients, Direction, PhmParams};
@@ -213,9 +213,15 @@ pub fn fit(args: &FitArgs) -> Result<()> {
             best = Some((what, problem, outcome));
         }
     }
-    bar.finish();
     let seconds = t0.elapsed().as_secs_f64();
     let (moved, problem, outcome) = best.expect("the first start's fit succeeded");
+    // A fit may move the coefficients where closed cycles return energy
+    // (docs/phm.md, "Open points"): search the fitted set within the record's
+    // twist range and say so.
+    let span = twist.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+    bar.stage("passivity: searching closed cycles of the fitted model");
+    let passivity = phm_passivity::search(&outcome.params, span, 1000, 1);
+    bar.finish();
     let start_text = match (&args.params, &moved) {
         (Some(p), _) => p.display().to_string(),
         (None, None) => format!("idealised from the envelope (best of {n_starts} starts)"),
@@ -243,7 +249,14 @@ pub fn fit(args: &FitArgs) -> Result<()> {
         "fixed": problem.vars.iter().filter(|v| v.fixed).map(|v| json!([v.name, v.start])).collect::<Vec<_>>(),
         "identifiability": outcome.identifiability,
         "displacement_noise": monotone,
+        "passivity": passivity,
     });
+    if let Some(w) = &passivity.worst {
+        eprintln!(
+            "warning: the fitted model returns energy in {} of {} closed cycles searched within the record's twist range (worst: {:.4} {mu}*{tu} a cycle through {:?} after {:?}); its coefficients lie where the PHM's rules are not passive (docs/phm.md, \"Open points\")",
+            passivity.returning_energy, passivity.cycles, w.work, w.cycle, w.history
+        );
+    }
     let file = phm_json(&outcome.params, (tu, mu), Some(meta.clone()));
     if let Some(out) = &args.out {
         std::fs::write(out, serde_json::to_string_pretty(&file)? + "\n")
@@ -268,6 +281,7 @@ pub fn fit(args: &FitArgs) -> Result<()> {
             "seconds": seconds,
             "identifiability": outcome.identifiability,
             "identifiability_summary": outcome.identifiability.summary(),
+            "passivity": meta["passivity"],
         });
         outln!("{}", serde_json::to_string_pretty(&obj)?);
         return Ok(());
@@ -277,6 +291,11 @@ pub fn fit(args: &FitArgs) -> Result<()> {
         outcome.nrmse, outcome.iterations
     );
     outln!("  start: {start_text}");
+    outln!(
+        "  passivity: {} of {} closed cycles searched return energy",
+        passivity.returning_energy,
+        passivity.cycles
+    );
     for (d, dir) in [Direction::Positive, Direction::Negative]
         .into_iter()
         .enumerate()

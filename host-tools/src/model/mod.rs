@@ -3,6 +3,7 @@
 pub mod custom;
 mod params;
 mod phm_file;
+pub mod phm_passivity;
 mod spec;
 
 pub use custom::{register, CustomEffect, Extras};
