@@ -224,6 +224,7 @@ pub fn fit(args: &FitArgs) -> Result<()> {
     bar.finish();
     let start_text = match (&args.params, &moved) {
         (Some(p), _) => p.display().to_string(),
+        (None, None) if n_starts == 1 => "idealised from the envelope".to_string(),
         (None, None) => format!("idealised from the envelope (best of {n_starts} starts)"),
         (None, Some(m)) => {
             format!("idealised from the envelope, then {m} (best of {n_starts} starts)")
