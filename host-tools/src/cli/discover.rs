@@ -7,7 +7,6 @@ use super::fit::Bar;
 use crate::discover::slip;
 use crate::discover::{discover, page};
 use crate::fit::run::Progress;
-use crate::report::plots::{ladder, Rung as PlotRung};
 use anyhow::{Context, Result};
 use clap::Args;
 use serde_json::json;
@@ -61,20 +60,8 @@ pub fn run(args: DiscoverArgs) -> Result<()> {
     );
     beyond.slip = slip::of_ladder(&discovery, beyond.slip);
     bar.finish();
-    let labels: Vec<String> = discovery.rungs.iter().map(|r| r.label()).collect();
-    let rungs: Vec<PlotRung> = discovery
-        .rungs
-        .iter()
-        .zip(&labels)
-        .map(|(r, label)| PlotRung {
-            label,
-            params: r.params,
-            nrmse: r.nrmse,
-            delta_bic: r.delta_bic,
-        })
-        .collect();
     if let Some(path) = &args.plot {
-        let fig = ladder(&rungs, Some(crate::discover::suspects::SIGNIFICANT_BIC))?;
+        let fig = page::ladder_figure(&discovery.rungs)?;
         std::fs::write(path, fig.to_svg())
             .with_context(|| format!("{}: cannot write", path.display()))?;
     }

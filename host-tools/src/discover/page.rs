@@ -9,7 +9,7 @@ use crate::report::plots::{
     ladder, loop_overlay, per_cycle_bars, residual_map, time_series, Quantity, Residuals,
     Rung as PlotRung, Signal, TimeBase, Trace,
 };
-use crate::report::{Report, Table};
+use crate::report::{Figure, Report, Table};
 use anyhow::Result;
 
 /// Units of the record's displacement and force.
@@ -135,8 +135,10 @@ pub fn diagnosis_sections(
     Ok(())
 }
 
-/// The ladder figure and table.
-pub fn ladder_section(page: &mut Report, rungs: &[Rung]) -> Result<()> {
+/// The ladder figure: NRMSE and BIC change of each rung, labelled with
+/// [`Rung::label`], the significance threshold marked (the page's figure
+/// and `hyst discover --plot`).
+pub fn ladder_figure(rungs: &[Rung]) -> Result<Figure> {
     let labels: Vec<String> = rungs.iter().map(Rung::label).collect();
     let plot_rungs: Vec<PlotRung> = rungs
         .iter()
@@ -148,7 +150,12 @@ pub fn ladder_section(page: &mut Report, rungs: &[Rung]) -> Result<()> {
             delta_bic: r.delta_bic,
         })
         .collect();
-    let fig = ladder(&plot_rungs, Some(super::suspects::SIGNIFICANT_BIC))?;
+    Ok(ladder(&plot_rungs, Some(super::suspects::SIGNIFICANT_BIC))?)
+}
+
+/// The ladder figure and table.
+pub fn ladder_section(page: &mut Report, rungs: &[Rung]) -> Result<()> {
+    let fig = ladder_figure(rungs)?;
     let mut t = Table::new(&["Model", "Parameters", "NRMSE", "Energy error", "ΔBIC"]);
     for r in rungs {
         t.row(vec![
