@@ -97,6 +97,24 @@ fn side_name(d: usize) -> &'static str {
     ["positive", "negative"][d]
 }
 
+/// The excursions of one direction (`sign` +1 or -1) past the largest twist
+/// so far: for each, the indices of its samples that set a new largest
+/// twist (consecutive samples), in order.
+fn excursions(twist: &[f64], sign: f64) -> Vec<Vec<usize>> {
+    let mut far = 0.0;
+    let mut runs: Vec<Vec<usize>> = vec![];
+    for (i, &x) in twist.iter().enumerate() {
+        if sign * x > far {
+            far = sign * x;
+            match runs.last_mut() {
+                Some(run) if run.last() == Some(&i.wrapping_sub(1)) => run.push(i),
+                _ => runs.push(vec![i]),
+            }
+        }
+    }
+    runs
+}
+
 /// The points of one direction (`sign` +1 or -1) known to lie on its
 /// primary curve, as `(twist, torque)` magnitudes: every sample of the first
 /// excursion (from the virgin state the element follows the curve), then the
@@ -104,25 +122,18 @@ fn side_name(d: usize) -> &'static str {
 /// so far. The rest of such an excursion is a reloading branch that meets the
 /// curve only after the previous extreme (rules 4-6 of §5.2.3), below it.
 pub fn first_excursions(twist: &[f64], torque: &[f64], sign: f64) -> Vec<[f64; 2]> {
-    let mut far = 0.0;
     let mut env: Vec<[f64; 2]> = vec![];
-    // Index of the previous sample past `far`, and how many excursions.
-    let mut prev: Option<usize> = None;
-    let mut runs = 0;
-    for (i, (&x, &t)) in twist.iter().zip(torque).enumerate() {
-        let (x, t) = (sign * x, sign * t);
-        if x > far {
-            far = x;
-            let same_run = prev == Some(i.wrapping_sub(1));
-            if !same_run {
-                runs += 1;
-            }
-            if same_run && runs > 1 {
-                env.pop();
-            }
-            prev = Some(i);
-            env.push([x, t.max(0.0)]);
-        }
+    for (k, run) in excursions(twist, sign).iter().enumerate() {
+        let on_curve = if k == 0 {
+            &run[..]
+        } else {
+            &run[run.len() - 1..]
+        };
+        env.extend(
+            on_curve
+                .iter()
+                .map(|&i| [sign * twist[i], sign * torque[i]]),
+        );
     }
     env.retain(|p| p[1] > 0.0);
     env
@@ -135,21 +146,10 @@ pub fn first_excursions(twist: &[f64], torque: &[f64], sign: f64) -> Vec<[f64; 2
 /// the yield twist, the unloading starts on the segment the reversal is on),
 /// so a fit cannot move a breakpoint across an amplitude.
 pub fn amplitudes(twist: &[f64], sign: f64) -> Vec<f64> {
-    let mut far = 0.0;
-    let mut out: Vec<f64> = vec![];
-    let mut prev: Option<usize> = None;
-    for (i, &x) in twist.iter().enumerate() {
-        let x = sign * x;
-        if x > far {
-            far = x;
-            if prev == Some(i.wrapping_sub(1)) {
-                out.pop();
-            }
-            out.push(x);
-            prev = Some(i);
-        }
-    }
-    out
+    excursions(twist, sign)
+        .iter()
+        .filter_map(|run| run.last().map(|&i| sign * twist[i]))
+        .collect()
 }
 
 /// Other starts for a fit from `start`: each breakpoint of a primary curve
