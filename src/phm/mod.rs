@@ -71,7 +71,7 @@ pub use backbone::{Backbone, BackboneError, BackboneRule, Direction};
 pub use branch::{Branch, Kind};
 pub use params::{PhmError, PhmParams};
 pub use rules::{CoefficientSpec, Coefficients, Level, MAX_CYCLES, SPECS};
-pub use work::work_along;
+pub use work::{closed_cycle_work, work_along};
 
 use crate::element::{Element, Response, StepError};
 use crate::scalar::Scalar;

@@ -62,3 +62,36 @@ pub fn work_along<const N: usize, const M: usize>(
     }
     Ok(w)
 }
+
+/// The work over a cycle through `corners` (from the first through the
+/// others back to the first), repeated until the element's state after a
+/// repetition (torque and tangent, what it follows, the rule memory and the
+/// branch) is the one after the repetition before: that closed cycle's work,
+/// or `None` if the state has not repeated within `repeats` repetitions (or
+/// `corners` is empty). The element is first taken to `corners[0]`, whose
+/// work is not counted; steps as in [`work_along`].
+pub fn closed_cycle_work<const N: usize, const M: usize>(
+    el: &mut Phm<f64, N, M>,
+    corners: &[f64],
+    h: f64,
+    repeats: usize,
+) -> Result<Option<f64>, StepError> {
+    let Some(&first) = corners.first() else {
+        return Ok(None);
+    };
+    work_along(el, first, h)?;
+    let state = |e: &Phm<f64, N, M>| (e.response(), e.committed().kind(), *e.levels(), *e.branch());
+    let mut before = state(el);
+    for _ in 0..repeats {
+        let mut w = 0.0;
+        for &x in corners[1..].iter().chain(&corners[..1]) {
+            w += work_along(el, x, h)?;
+        }
+        let after = state(el);
+        if after == before {
+            return Ok(Some(w));
+        }
+        before = after;
+    }
+    Ok(None)
+}

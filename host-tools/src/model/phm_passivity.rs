@@ -13,7 +13,7 @@
 
 use super::PHM_POINTS;
 use crate::random::Rng;
-use hysteresis::phm::{work_along, Direction, Phm, PhmParams};
+use hysteresis::phm::{closed_cycle_work, Direction, Phm, PhmParams};
 use hysteresis::Element;
 use serde::Serialize;
 
@@ -97,21 +97,7 @@ fn closed_cycle(el: &mut Element16, history: &[f64], corners: &[f64], h: f64) ->
             el.commit();
         }
     }
-    work_along(el, corners[0], h).ok()?;
-    let state = |e: &Element16| (e.response(), e.committed().kind(), *e.levels(), *e.branch());
-    let mut before = state(el);
-    for _ in 0..6 {
-        let mut w = 0.0;
-        for &x in corners[1..].iter().chain(&corners[..1]) {
-            w += work_along(el, x, h).ok()?;
-        }
-        let after = state(el);
-        if after == before {
-            return Some(w);
-        }
-        before = after;
-    }
-    None
+    closed_cycle_work(el, corners, h, 6).ok().flatten()
 }
 
 #[cfg(test)]
