@@ -154,7 +154,9 @@ fn pinching_rules() {
         err(pin, &[("zeta0", 0.9), ("lambda", -0.5)]),
         ("lambda", Rule::DegradesToZero)
     );
-    assert_eq!(err(pin, &[("psi0", 0.0)]), ("psi0", Rule::NotPositive));
+    assert_eq!(err(pin, &[("psi0", 0.0)]), ("psi0", Rule::Zero));
+    // Its sign does not matter (squared in h(z)), as for lambda above.
+    assert!(build(pin, &[("psi0", -0.2)]).is_ok());
     assert_eq!(
         err(pin, &[("delta_psi", -0.01)]),
         ("delta_psi", Rule::DegradesToZero)
@@ -218,11 +220,11 @@ fn asymmetry_factors_must_lie_strictly_between_minus_one_and_one() {
     build(asym, &[("asym_strength", 0.5), ("asym_stiffness", -0.3)]).unwrap();
     assert_eq!(
         err(asym, &[("asym_strength", 1.0)]),
-        ("asym_strength", Rule::NotAFraction)
+        ("asym_strength", Rule::NotASignedFraction)
     );
     assert_eq!(
         err(asym, &[("asym_stiffness", -1.0)]),
-        ("asym_stiffness", Rule::NotAFraction)
+        ("asym_stiffness", Rule::NotASignedFraction)
     );
     assert_eq!(
         err(asym, &[("asym_stiffness", f64::NAN)]),

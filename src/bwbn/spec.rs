@@ -61,8 +61,13 @@ pub enum Rule {
     NotPositive,
     /// The value must be zero or greater.
     Negative,
+    /// The value must not be zero (the pinching width's factors, whose
+    /// sign does not matter: eq. 3.11 enters h(z) squared).
+    Zero,
     /// The value must lie in [0, 1].
     NotAFraction,
+    /// The value must lie in (-1, 1) (the asymmetries).
+    NotASignedFraction,
     /// The ultimate hysteretic displacement Zu = (A/(nu(beta+gamma)))^(1/n)
     /// (eq. 3.12) is undefined because beta + gamma <= 0; pinching needs it.
     ZuUndefined,
@@ -91,7 +96,9 @@ impl Rule {
             Rule::NotFinite => "must be a finite number",
             Rule::NotPositive => "must be greater than zero",
             Rule::Negative => "must not be negative",
+            Rule::Zero => "must not be zero",
             Rule::NotAFraction => "must lie in [0, 1]",
+            Rule::NotASignedFraction => "must lie in (-1, 1)",
             Rule::ZuUndefined => {
                 "pinching needs Zu = (A/(nu(beta+gamma)))^(1/n) (eq. 3.12), undefined when beta + gamma <= 0"
             }

@@ -58,7 +58,7 @@ fn check_fraction<S: Scalar>(name: &'static str, v: S) -> Result<(), ParamError>
         return Err(ParamError::new(name, Rule::NotFinite));
     }
     if !(v > -S::ONE && v < S::ONE) {
-        return Err(ParamError::new(name, Rule::NotAFraction));
+        return Err(ParamError::new(name, Rule::NotASignedFraction));
     }
     Ok(())
 }

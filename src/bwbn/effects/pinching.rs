@@ -153,7 +153,7 @@ impl<S: Scalar> Pinching<S> {
             psi0 + delta_psi * energy_limit
         };
         if psi0 == S::ZERO {
-            return Err(ParamError::new("psi0", Rule::NotPositive));
+            return Err(ParamError::new("psi0", Rule::Zero));
         }
         if !same_sign_nonzero(psi0, psi_end) {
             return Err(ParamError::new("delta_psi", Rule::DegradesToZero));
