@@ -1046,3 +1046,126 @@ fn a_candidate_effect_parameter_is_held_when_it_is_added() {
         "{e}"
     );
 }
+
+/// Found by review: settings so large that the run cannot hold them crashed (`--levels
+/// 2305843009213693952`: a capacity overflow; `--population 4000000000`: an allocation of
+/// 192 GB); they are refused with the limit.
+#[test]
+fn settings_beyond_memory_are_refused_with_their_limit() {
+    let data = write("limits.csv", &column_record());
+    let params = write("limits.json", BW);
+    let e = cli::err(hyst(&[
+        "sensitivity",
+        &data,
+        "--params",
+        &params,
+        "--levels",
+        "2305843009213693952",
+    ]));
+    assert!(
+        e.contains("the sweep takes at most 1001 levels (steps of 0.1%), got 2305843009213693952"),
+        "{e}"
+    );
+    let e = cli::err(hyst(&[
+        "fit",
+        &data,
+        "--method",
+        "nsga2",
+        "--population",
+        "4000000000",
+        "--generations",
+        "1",
+    ]));
+    assert!(
+        e.contains("NSGA-II setting `population` = 4000000000: expected 2 to 1,000,000"),
+        "{e}"
+    );
+}
+
+/// Found by review: `export --history` drove a table stated in m and N with the history's
+/// millimetres as metres (the precision was measured at 1000 times the amplitude), and a
+/// history that does not move reported a perfect precision over nothing.
+#[test]
+fn export_histories_are_read_in_the_tables_units() {
+    let in_mm = write("export-mm.json", BW);
+    let in_m = write(
+        "export-m.json",
+        &BW.replace('}', r#", "units": {"displacement": "m", "force": "kN"}}"#),
+    );
+    let history = write(
+        "export-history.csv",
+        "displacement (mm)\n0\n1\n3\n0\n-3\n0\n3\n",
+    );
+    let table = cli::tmp("export-units.bin");
+    let peak = |params: &str| {
+        let o = ok(hyst(&[
+            "export",
+            params,
+            "--format",
+            "bin",
+            "--scalar",
+            "f32",
+            "--history",
+            &history,
+            "--out",
+            table.to_str().unwrap(),
+        ]));
+        // The row of element 0: index, file, peak force, ...
+        let text = cli::stderr(&o);
+        let row = text
+            .lines()
+            .find(|l| l.trim_start().starts_with("0 "))
+            .unwrap_or_else(|| panic!("{text}"));
+        row.split_whitespace()
+            .nth(2)
+            .unwrap()
+            .parse::<f64>()
+            .unwrap()
+    };
+    // Zu = 1 unit of displacement. In mm the element yields well before 3 mm (alpha k0 u +
+    // (1 - alpha) k0 Zu = 8.4 kN at most); in m, 0.003 m is far below Zu = 1 m and it stays
+    // elastic: k0 u = 0.018 kN.
+    let (mm, m) = (peak(&in_mm), peak(&in_m));
+    assert!(mm > 4.0 && mm < 8.4, "{mm}");
+    assert!((m / 0.018 - 1.0).abs() < 0.01, "{m}");
+    let one = write("export-one.csv", "displacement (mm)\n2.5\n");
+    let e = cli::err(hyst(&[
+        "export",
+        &in_mm,
+        "--format",
+        "bin",
+        "--history",
+        &one,
+        "--out",
+        table.to_str().unwrap(),
+    ]));
+    assert!(
+        e.contains("export-one.csv: expected a history that moves, found 1 sample at one place: nothing to compare"),
+        "{e}"
+    );
+}
+
+/// Found by review: the asymmetries' range was given as [0, 1] while -0.99 was accepted, and a
+/// pinching width of zero "must be greater than zero" while -0.1 was accepted.
+#[test]
+fn range_messages_state_the_range_that_is_checked() {
+    let data = write("ranges.csv", &column_record());
+    let e = cli::err(hyst(&[
+        "fit",
+        &data,
+        "--model",
+        "bw+asymmetry",
+        "--fix",
+        "asym_strength=1",
+    ]));
+    assert!(e.contains("asym_strength must lie in (-1, 1)"), "{e}");
+    let e = cli::err(hyst(&[
+        "fit",
+        &data,
+        "--model",
+        "bw+pinching",
+        "--fix",
+        "psi0=0",
+    ]));
+    assert!(e.contains("psi0 must not be zero"), "{e}");
+}

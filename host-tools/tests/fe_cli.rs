@@ -382,3 +382,60 @@ fn unusable_mesh_sizes_and_thread_counts_are_refused() {
         "the element size passed: {e}"
     );
 }
+
+/// Found by review: a value set twice (or by `--set` and its own option) silently took the
+/// last, and the summary listed a `--set` that was not applied; `--backbone` could replace a
+/// file the run wrote into `--out`; `--out a/b/c` made every missing folder, where every other
+/// output refuses a folder that does not exist. All are refused before the run.
+#[test]
+fn contradicting_settings_and_outputs_are_refused_before_the_run() {
+    let tp91 = specimen("tp-91.toml");
+    let e = err(hyst(&[
+        "fe",
+        &tp91,
+        "--set",
+        "concrete.fc_mpa=30",
+        "--set",
+        "concrete.fc_mpa=45",
+    ]));
+    assert!(
+        e.contains("--set concrete.fc_mpa=30 and --set concrete.fc_mpa=45 both set `concrete.fc_mpa`: give it once"),
+        "{e}"
+    );
+    let e = err(hyst(&[
+        "fe",
+        &tp91,
+        "--set",
+        "analysis.element_size_mm=50",
+        "--element-size",
+        "100",
+    ]));
+    assert!(
+        e.contains("--set analysis.element_size_mm=50 and --element-size 100 both set"),
+        "{e}"
+    );
+    let out = dir("contradictions");
+    for name in ["torque_twist.csv", "rebar_strains.csv", "concrete_0003.vtk"] {
+        let backbone = out.join(name);
+        let e = err(hyst(&[
+            "fe",
+            &tp91,
+            "--out",
+            out.to_str().unwrap(),
+            "--backbone",
+            backbone.to_str().unwrap(),
+        ]));
+        assert!(
+            e.contains("the run writes that file into --out"),
+            "{name}: {e}"
+        );
+    }
+    let deep = out.join("missing").join("run");
+    let e = err(hyst(&["fe", &tp91, "--out", deep.to_str().unwrap()]));
+    let missing = format!(
+        "the folder {} does not exist",
+        out.join("missing").display()
+    );
+    assert!(e.contains(&missing), "{e}");
+    assert!(!out.join("missing").exists());
+}

@@ -282,7 +282,7 @@ fn another_start_moves_a_breakpoint_across_an_amplitude() {
         })
         .into();
     let start = PhmParams::new(&curves[0], &curves[1], Coefficients::thesis()).unwrap();
-    let alone = PhmProblem::new(&x, &noisy, &start, &[])
+    let alone = PhmProblem::new(&x, &noisy, ["deg", "kN m"], &start, &[])
         .unwrap()
         .solve(|_, _| {})
         .unwrap();
@@ -432,6 +432,46 @@ fn errors_name_the_file_and_what_was_expected() {
     let e = err(hyst(&["simulate", &h, "--params", &nine]));
     assert!(
         e.contains("primary.positive has 9 points; a curve here has at most 8"),
+        "{e}"
+    );
+}
+
+/// Found by review: with a start file, a record whose torque is zero throughout hung the fit
+/// (its NaN Jacobian never left nalgebra's SVD), and a one-sample record "fitted" to NRMSE 0
+/// with every standard error 0. Both are refused, as the Bouc-Wen fits refuse them.
+#[test]
+fn records_without_anything_to_fit_are_refused() {
+    let start = write("nothing_start.json", TRUTH);
+    let zero = write(
+        "zero_torque.csv",
+        "twist (deg),torque (kN m)\n0,0\n1,0\n2,0\n1,0\n",
+    );
+    let e = err(hyst(&[
+        "fit",
+        &zero,
+        "--model",
+        "phm-torsion",
+        "--params",
+        &start,
+    ]));
+    assert!(
+        e.contains("expected the torque to vary, found 0 kN m in every sample: nothing to fit"),
+        "{e}"
+    );
+    let one = write(
+        "one_sample.csv",
+        "twist (deg),torque (kN m)\n0.5,10\n0.7,12\n",
+    );
+    let e = err(hyst(&[
+        "fit",
+        &one,
+        "--model",
+        "phm-torsion",
+        "--params",
+        &start,
+    ]));
+    assert!(
+        e.contains("the record has 2 samples, too few to fit the"),
         "{e}"
     );
 }

@@ -58,7 +58,7 @@ pub fn run(args: ExportArgs) -> Result<()> {
     for note in &src.notes {
         eprintln!("note: {note}");
     }
-    let history = read_history(&args, &src.elements)?;
+    let history = read_history(&args, &src)?;
     let bytes = export::encode(&src, args.scalar)?;
     let header = *Table::parse(&bytes).map_err(|e| anyhow!("{e}"))?.header();
     let files: Vec<String> = args.fits.iter().map(|p| export::short(p)).collect();
@@ -100,9 +100,12 @@ pub fn run(args: ExportArgs) -> Result<()> {
 }
 
 /// The `--history` displacements, read before anything is written so that a
-/// bad file leaves no table behind.
-/// Its quantity must be the elements': displacement for BWBN, twist for the PHM.
-fn read_history(args: &ExportArgs, elements: &Elements) -> Result<Option<Vec<f64>>> {
+/// bad file leaves no table behind, in the unit the parameter files state
+/// (a table in m was driven by the history's mm as metres: found by review).
+/// Its quantity must be the elements': displacement for BWBN, twist for the
+/// PHM; and it must move (at least two samples, not all equal), or there is
+/// nothing to compare.
+fn read_history(args: &ExportArgs, src: &export::Sources) -> Result<Option<Vec<f64>>> {
     let Some(path) = &args.history else {
         return Ok(None);
     };
@@ -110,7 +113,7 @@ fn read_history(args: &ExportArgs, elements: &Elements) -> Result<Option<Vec<f64
     for n in record.notices() {
         eprintln!("note: {n}");
     }
-    match (elements, record.is_torsion()) {
+    match (&src.elements, record.is_torsion()) {
         (Elements::Bwbn(_), true) => bail!(
             "{}: a twist history, but the table holds Bouc-Wen elements, which take displacement",
             path.display()
@@ -124,7 +127,17 @@ fn read_history(args: &ExportArgs, elements: &Elements) -> Result<Option<Vec<f64
     let u = record
         .displacement()
         .ok_or_else(|| anyhow!("{}: no displacement column", path.display()))?;
-    Ok(Some(u.to_vec()))
+    if u.iter().all(|&v| v == u[0]) {
+        bail!(
+            "{}: expected a history that moves, found {} sample{} at one place: nothing to compare",
+            path.display(),
+            u.len(),
+            if u.len() == 1 { "" } else { "s" },
+        );
+    }
+    Ok(Some(
+        u.iter().map(|&v| src.input.from_canonical(v)).collect(),
+    ))
 }
 
 fn report_precision(

@@ -89,6 +89,17 @@ pub fn run_fe(args: FeArgs) -> anyhow::Result<()> {
             given: format!("--threads {t}"),
         });
     }
+    // One value a key: a second would silently win (found by review).
+    for (i, o) in overrides.iter().enumerate() {
+        if let Some(first) = overrides[..i].iter().find(|p| p.key == o.key) {
+            anyhow::bail!(
+                "{} and {} both set `{}`: give it once",
+                first.given,
+                o.given,
+                o.key
+            );
+        }
+    }
     let spec = Specimen::load_with(&args.specimen, &overrides)?;
     for note in spec.notes() {
         eprintln!("note: {note}");

@@ -186,7 +186,9 @@ impl Command {
 
     /// Refuses, before any work, an output that is one of the inputs or another output (the
     /// only copy of a lab record was overwritten by a typo: found by review) or whose folder
-    /// does not exist (the result of a long run was lost at the end).
+    /// does not exist (the result of a long run was lost at the end). `hyst fe --out` names a
+    /// folder the run makes: the folder above it must exist, and `--backbone` may not take the
+    /// name of a file the run writes there (it replaced `torque_twist.csv`: found by review).
     fn check_outputs(&self) -> anyhow::Result<()> {
         let same = |a: &Path, b: &Path| match (a.canonicalize(), b.canonicalize()) {
             (Ok(a), Ok(b)) => a == b,
@@ -214,6 +216,36 @@ impl Command {
                     p.display(),
                     d.display()
                 );
+            }
+        }
+        if let Command::Fe(a) = self {
+            if let Some(out) = &a.out {
+                // The run makes its folder, not the folders above it.
+                let above = out.parent().filter(|d| !d.as_os_str().is_empty());
+                if let Some(d) = above.filter(|d| !d.is_dir()) {
+                    anyhow::bail!(
+                        "--out {}: the folder {} does not exist",
+                        out.display(),
+                        d.display()
+                    );
+                }
+                if out.exists() && !out.is_dir() {
+                    anyhow::bail!("--out {}: expected a folder, found a file", out.display());
+                }
+                let taken = |p: &Path| {
+                    let folder = p.parent().filter(|d| !d.as_os_str().is_empty());
+                    folder.is_some_and(|d| same(d, out))
+                        && p.file_name()
+                            .and_then(|n| n.to_str())
+                            .is_some_and(crate::fe::run::writes_into_out)
+                };
+                if let Some(b) = a.backbone.as_deref().filter(|b| taken(b)) {
+                    anyhow::bail!(
+                        "--backbone {}: the run writes that file into --out {}; choose another name",
+                        b.display(),
+                        out.display()
+                    );
+                }
             }
         }
         Ok(())

@@ -173,11 +173,12 @@ pub fn fit(args: &FitArgs) -> Result<()> {
     let mut twist = channel(&record, Channel::Displacement, tu)?;
     let torque = channel(&record, Channel::Force, mu)?;
     let monotone = monotone_input(&args.data, &mut twist, &args.read, "twist", tu.symbol());
+    let units = [tu.symbol(), mu.symbol()];
     let start = match &start_file {
         Some(f) => f.params.clone(),
         None => idealised_start(&args.data, &twist, &torque)?,
     };
-    let problem = PhmProblem::new(&twist, &torque, &start, &args.fix)?;
+    let problem = PhmProblem::new(&twist, &torque, units, &start, &args.fix)?;
     // Without a start file, the idealised start's breakpoints may lie on the
     // wrong side of an amplitude of the record, which a local fit cannot
     // cross: other starts put each on the other sides (`breakpoint_starts`).
@@ -186,7 +187,7 @@ pub fn fit(args: &FitArgs) -> Result<()> {
     if start_file.is_none() {
         let amps = [amplitudes(&twist, 1.0), amplitudes(&twist, -1.0)];
         for (what, p) in breakpoint_starts(&start, [&amps[0], &amps[1]]) {
-            let moved = PhmProblem::new(&twist, &torque, &p, &args.fix)?;
+            let moved = PhmProblem::new(&twist, &torque, units, &p, &args.fix)?;
             if moved.free_start() != starts[0].1.free_start() {
                 starts.push((Some(what), moved));
             }

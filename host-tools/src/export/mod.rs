@@ -53,6 +53,9 @@ pub struct Sources {
     pub elements: Elements,
     /// The units they share (empty if none states them).
     pub units: Units,
+    /// The unit of the elements' input (displacement or twist): the one the
+    /// files state, else the records' canonical mm (Bouc-Wen) or deg (PHM).
+    pub input: Unit,
     /// What was read but is not part of the table, a line each.
     pub notes: Vec<String>,
 }
@@ -162,6 +165,11 @@ pub fn read(paths: &[PathBuf]) -> Result<Sources> {
             first.display()
         ));
     }
+    let input = match &units {
+        Some((_, (d, _))) => *d,
+        None if phm.is_empty() => Unit::Millimetre,
+        None => Unit::Degree,
+    };
     let units = match units {
         // Labelled by symbol, which always fits (`every_symbol_fits_a_device_table`).
         Some((_, (d, f))) => Units::new(d.symbol(), f.symbol()).expect("a unit symbol fits"),
@@ -176,6 +184,7 @@ pub fn read(paths: &[PathBuf]) -> Result<Sources> {
         files: paths.to_vec(),
         elements,
         units,
+        input,
         notes,
     })
 }

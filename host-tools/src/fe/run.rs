@@ -185,6 +185,25 @@ fn fallen_below_peak(samples: &[Sample], fraction: f64) -> bool {
         && output::cracking(samples).is_some_and(|(_, c)| c < peak_at)
 }
 
+/// Whether a run with `--out` writes a file of this name into its folder
+/// (the curves, bar strains, section shear and the VTK snapshots), so that
+/// no other output may take it.
+pub fn writes_into_out(name: &str) -> bool {
+    const FILES: [&str; 5] = [
+        "torque_twist.csv",
+        "torque_twist.svg",
+        "rebar_strains.csv",
+        "section_shear.csv",
+        "section_shear.svg",
+    ];
+    let snapshot = |prefix: &str| {
+        name.strip_prefix(prefix)
+            .and_then(|r| r.strip_suffix(".vtk"))
+            .is_some_and(|n| n.len() >= 4 && n.bytes().all(|b| b.is_ascii_digit()))
+    };
+    FILES.contains(&name) || snapshot("concrete_") || snapshot("rebar_")
+}
+
 /// The bar sets whose largest strains `rebar_strains.csv` reports, in its
 /// column order.
 const BAR_SETS: [&str; 2] = ["longitudinal", "transverse"];
@@ -242,7 +261,9 @@ pub fn run<M: SolidMaterial, B: BarMaterial>(
     let mut outputs = Vec::new();
     let mut files = None;
     if let Some(dir) = &opts.out {
-        std::fs::create_dir_all(dir).with_context(|| format!("creating {}", dir.display()))?;
+        if !dir.is_dir() {
+            std::fs::create_dir(dir).with_context(|| format!("creating {}", dir.display()))?;
+        }
         let tt = dir.join("torque_twist.csv");
         let rb = dir.join("rebar_strains.csv");
         let csv = Csv::create(&tt, &TORQUE_TWIST_HEADER)

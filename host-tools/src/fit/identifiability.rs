@@ -128,10 +128,23 @@ pub fn covariance(jac: &DMatrix<f64>, cost: f64, n_obs: usize) -> DMatrix<f64> {
 
 /// The singular values of `jac`, its `V^T`, and the largest singular value
 /// (at least the smallest positive float, so that ratios to it are finite).
+/// A Jacobian with a non-finite entry determines nothing: its singular
+/// values are taken as zero (rank 0, every parameter undetermined), where
+/// the decomposition itself would not end (nalgebra's iteration never
+/// converges on NaN; a PHM fit of a torque that was zero throughout hung
+/// there).
 fn decompose(jac: &DMatrix<f64>) -> (DVector<f64>, DMatrix<f64>, f64) {
-    let svd = jac.clone().svd(false, true);
-    let v_t = svd.v_t.expect("requested V^T");
-    let sv = svd.singular_values;
+    let (sv, v_t) = match jac
+        .iter()
+        .all(|v| v.is_finite())
+        .then(|| jac.clone().svd(false, true))
+    {
+        Some(svd) => (svd.singular_values, svd.v_t.expect("requested V^T")),
+        None => (
+            DVector::zeros(jac.ncols().min(jac.nrows())),
+            DMatrix::identity(jac.ncols().min(jac.nrows()), jac.ncols()),
+        ),
+    };
     let smax = sv
         .iter()
         .cloned()
@@ -221,6 +234,15 @@ mod tests {
     use super::*;
 
     /// y = a t + b t with columns identical: a and b cannot be separated.
+    #[test]
+    fn a_jacobian_with_nan_determines_nothing() {
+        let mut jac = DMatrix::from_fn(10, 2, |i, j| (i + j) as f64);
+        jac[(3, 1)] = f64::NAN;
+        let id = analyse(&jac, &["a", "b"], &[1.0, 2.0], 1.0, 10);
+        assert_eq!((id.rank, id.condition), (0, f64::INFINITY));
+        assert_eq!(id.undetermined, ["a", "b"]);
+    }
+
     #[test]
     fn finds_a_confounded_pair() {
         let t: Vec<f64> = (0..20).map(|i| i as f64).collect();

@@ -201,10 +201,16 @@ pub enum BinaryCrossover {
     PerVariable,
 }
 
+/// The largest population a run takes: parents and children, each with
+/// their variables and objectives, are held in memory (about 0.5 GB at
+/// this size with 17 variables).
+pub const MAX_POPULATION: usize = 1_000_000;
+
 /// The settings of one NSGA-II run.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Nsga2 {
-    /// Parents per generation, and children per generation (at least 2).
+    /// Parents per generation, and children per generation (2 to
+    /// [`MAX_POPULATION`]).
     pub population: usize,
     /// Generations, counting the random initial population as the first (as Deb's reference
     /// code and pymoo do): a run makes `population * generations` evaluations unless stopped.
@@ -691,8 +697,8 @@ impl Nsga2 {
             })
         };
         let probability = |p: f64| (0.0..=1.0).contains(&p);
-        if self.population < 2 {
-            return setting("population", self.population.to_string(), "at least 2");
+        if !(2..=MAX_POPULATION).contains(&self.population) {
+            return setting("population", self.population.to_string(), "2 to 1,000,000");
         }
         if self.generations < 1 {
             return setting("generations", self.generations.to_string(), "at least 1");

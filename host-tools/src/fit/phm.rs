@@ -36,6 +36,7 @@
 
 use super::identifiability::{self, Identifiability};
 use super::lsq::{self, Options};
+use super::problem::check_signal;
 use crate::model::{simulate_phm, PHM_POINTS};
 use anyhow::{anyhow, bail, Result};
 use hysteresis::phm::rules::idx;
@@ -351,10 +352,13 @@ impl PhmProblem {
     /// A fit of the record `twist`, `torque` from the start curves
     /// (positive, negative; valid, at most [`PHM_POINTS`] points each) and
     /// start coefficients, holding the `fix`ed variables (names as in
-    /// [`Variable::name`]).
+    /// [`Variable::name`]). `units` (twist, torque) name the record's units
+    /// in errors: the twist and torque must vary, with finite squares, and
+    /// the record must have more samples than free variables.
     pub fn new(
         twist: &[f64],
         torque: &[f64],
+        units: [&str; 2],
         start: &PhmParams<f64, PHM_POINTS>,
         fix: &[(String, f64)],
     ) -> Result<Self> {
@@ -421,6 +425,15 @@ impl PhmProblem {
         let n = twist.len();
         if n == 0 || torque.len() != n {
             bail!("expected as many torques as twists, and at least one");
+        }
+        check_signal("twist", units[0], twist)?;
+        check_signal("torque", units[1], torque)?;
+        let free = vars.iter().filter(|v| !v.fixed).count();
+        if n <= free {
+            bail!(
+                "the record has {n} sample{}, too few to fit the {free} free variables of the PHM (it needs more samples than variables)",
+                if n == 1 { "" } else { "s" }
+            );
         }
         let rms = (torque.iter().map(|t| t * t).sum::<f64>() / n as f64).sqrt();
         let p = PhmProblem {

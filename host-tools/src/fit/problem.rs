@@ -36,22 +36,25 @@ pub struct Problem {
 /// zero throughout "succeeds" with `k0` at the bottom of its range, and its NRMSE divides by
 /// zero), and their squares stay finite (the NRMSE of forces near 1e155 kN was NaN).
 fn check_signals(exp: &Experiment) -> Result<()> {
-    for (name, unit, values) in [
-        ("displacement", "mm", exp.displacement()),
-        ("force", "kN", exp.force()),
-    ] {
-        if values.iter().all(|v| *v == values[0]) {
+    check_signal("displacement", "mm", exp.displacement())?;
+    check_signal("force", "kN", exp.force())
+}
+
+/// One signal of a record to fit (`name` and `unit` for the message): it
+/// varies and its squares sum to a finite number.
+pub(crate) fn check_signal(name: &str, unit: &str, values: &[f64]) -> Result<()> {
+    if let Some(&first) = values.first() {
+        if values.iter().all(|v| *v == first) {
             anyhow::bail!(
-                "expected the {name} to vary, found {} {unit} in every sample: nothing to fit",
-                values[0]
+                "expected the {name} to vary, found {first} {unit} in every sample: nothing to fit"
             );
         }
-        if !values.iter().map(|v| v * v).sum::<f64>().is_finite() {
-            let largest = values.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-            anyhow::bail!(
-                "expected {name}s whose squares sum to a finite number, found values up to {largest:e} {unit}: give the record in larger units"
-            );
-        }
+    }
+    if !values.iter().map(|v| v * v).sum::<f64>().is_finite() {
+        let largest = values.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        anyhow::bail!(
+            "expected {name}s whose squares sum to a finite number, found values up to {largest:e} {unit}: give the record in larger units"
+        );
     }
     Ok(())
 }

@@ -8,8 +8,12 @@ use nalgebra::{DMatrix, DVector};
 /// identifiability analysis: the residual sum of squares and the
 /// coefficients, or `None` when the columns are dependent (a singular value
 /// below 1e-6 of the largest, about a pivot below 1e-12 in the normal
-/// equations).
+/// equations) or an entry is not finite (on which the decomposition would
+/// not end).
 pub fn regress(x: &DMatrix<f64>, r: &DVector<f64>) -> Option<(f64, DVector<f64>)> {
+    if !x.iter().chain(r.iter()).all(|v| v.is_finite()) {
+        return None;
+    }
     let svd = x.clone().svd(true, true);
     let tol = 1e-6 * svd.singular_values.max();
     if svd.rank(tol) < x.ncols() {
@@ -42,5 +46,9 @@ mod tests {
         // Dependent columns are refused, not solved.
         let dep = DMatrix::from_fn(50, 2, |i, j| (j + 1) as f64 * x[(i, 2)]);
         assert!(regress(&dep, &r).is_none());
+        // So is a NaN, on which the decomposition would not end.
+        let mut nan = r.clone();
+        nan[7] = f64::NAN;
+        assert!(regress(&x, &nan).is_none());
     }
 }

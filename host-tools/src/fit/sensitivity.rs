@@ -34,14 +34,21 @@ pub struct Sweep {
     pub rank: usize,
 }
 
+/// The most levels a sweep takes: steps of 0.1% from -50% to +50%. Each
+/// level is one simulation a parameter, kept in memory until it is plotted.
+pub const MAX_LEVELS: usize = 1001;
+
 /// Sweeps every free parameter of `problem` around the normalised point `x`,
 /// whose predicted output is `nominal` (`Problem::try_predict`), over
-/// `levels` (at least 3) equally spaced changes from -50% to +50%. A
+/// `levels` (3 to [`MAX_LEVELS`]) equally spaced changes from -50% to +50%. A
 /// parameter whose value is zero is swept over +-50% of its fitting range
 /// instead (a relative change of zero is no change).
 pub fn analyse(problem: &Problem, x: &[f64], nominal: &[f64], levels: usize) -> Result<Vec<Sweep>> {
     if levels < 3 {
         bail!("the sweep needs at least 3 levels (-50%, 0, +50%), got {levels}");
+    }
+    if levels > MAX_LEVELS {
+        bail!("the sweep takes at most {MAX_LEVELS} levels (steps of 0.1%), got {levels}");
     }
     let changes: Vec<f64> = (0..levels)
         .map(|i| -0.5 + i as f64 / (levels - 1) as f64)
