@@ -263,10 +263,13 @@ impl<S: Scalar> Branch<S> {
             // by review: 29 of 400 first reloadings of the docs' column
             // missed it in f64, and f32 and Q15.16 missed others, up to 45%
             // of peak torque apart).
+            // `S::line`: in Q15.16 the product alone saturated on stiff
+            // columns where the sum does not, and the contact came too early
+            // (found by review).
             let yb = if next_vertex == Some(b) {
                 self.v[i + 1][1]
             } else {
-                self.v[i][1] + self.v[i][2] * (b - self.v[i][0])
+                S::line(self.v[i][1], self.v[i][2], b, self.v[i][0])
             };
             let tb = if next_break == Some(b) {
                 bound.bound_in(j + 1, b).0
@@ -275,6 +278,15 @@ impl<S: Scalar> Branch<S> {
             };
             let db = yb - tb;
             if !(db < S::ZERO) {
+                // A steep segment evaluated at a far breakpoint can leave
+                // Q15.16's range while its slope does not (9,504 kN m/deg
+                // over 5.3 deg: found by review), and the interpolation then
+                // put the contact at `a`: the crossing from the two slopes
+                // instead. (A saturated slope keeps the interpolation, whose
+                // result the step refuses.) Floats never take this path.
+                if !db.is_finite() && self.v[i][2].is_finite() {
+                    return a - da / (self.v[i][2] - bound.bound_in(j, a).1);
+                }
                 return a + (b - a) * (-da / (db - da));
             }
             if next_vertex == Some(b) {

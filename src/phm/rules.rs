@@ -349,8 +349,12 @@ pub(crate) fn unloading_branch<S: Scalar, const N: usize>(
             // theta_m. `s` is the pinched line's slope as followed (a
             // falling line is held at the torque reached, G5).
             let s = ((tp - y0) / (xm - x0)).max(S::ZERO);
+            // Written about theta_m: `k1 xm` alone left Q15.16's range on
+            // stiff columns (k_T1 = 5000 kN m/deg at 8 deg), the saturated
+            // bound dropped out of the `min`s below, and the element turned
+            // at zero torque from the 15th cycle on (found by review).
             let latest = if k1 > s {
-                (k1 * xm - s * x0 - (tm2 - y0)) / (k1 - s)
+                xm - (tm2 - y0 - s * (xm - x0)) / (k1 - s)
             } else {
                 xm
             };

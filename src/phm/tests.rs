@@ -680,6 +680,57 @@ fn random_walks_in_low_precision_track_f64() {
     assert!(worst_f32 < 1e-4 && worst_fixed < 1e-2);
 }
 
+/// Stiff columns (initial stiffness 5,000 and 30,000 kN m/deg, within the
+/// documented range), where intermediate products of the rules and of the
+/// contact search left Q15.16's range although their results do not (found
+/// by review): cycles at +-8 turned at zero torque from the 15th on (G10's
+/// bound saturated), and an unloading from 8 reached the primary curve at
+/// 5.2 instead of 4.99 (the contact search evaluated a steep segment at a
+/// far breakpoint, out of range).
+#[test]
+fn stiff_columns_in_fixed_point_track_f64() {
+    fn column<S: Scalar>(points: &[[f64; 2]; 4]) -> PhmParams<S, 4> {
+        let p = points.map(|[x, y]| [S::from_f64(x), S::from_f64(y)]);
+        PhmParams::symmetric(&p, Coefficients::thesis()).unwrap()
+    }
+    let worst = |points: &[[f64; 2]; 4], legs: &[f64]| {
+        let mut a: Phm<f64, 4, 16> = Phm::new(column(points));
+        let mut c: Phm<Fixed, 4, 16> = Phm::new(column(points));
+        let (mut from, mut worst) = (0.0, 0.0f64);
+        for &to in legs {
+            for i in 1..=40 {
+                let t = from + (to - from) * f64::from(i) / 40.0;
+                let ta = a.set_trial(t).unwrap().force;
+                let tc = c.set_trial(Fixed::from_f64(t)).unwrap().force.to_f64();
+                a.commit();
+                c.commit();
+                worst = worst.max((tc - ta).abs());
+            }
+            from = to;
+        }
+        worst
+    };
+    let cycles: std::vec::Vec<f64> = (0..40)
+        .map(|i| if i % 2 == 0 { 8.0 } else { -8.0 })
+        .collect();
+    let g10 = worst(
+        &[[0.2, 1000.0], [1.4, 1600.0], [4.0, 1650.0], [8.5, 1300.0]],
+        &cycles,
+    );
+    let contact = worst(
+        &[[0.1, 3000.0], [1.4, 4000.0], [4.0, 4100.0], [8.5, 3500.0]],
+        &[-0.3, 8.0, 4.0, -1.0],
+    );
+    std::println!("Q15.16 from f64: G10 {g10:.2e} of 1650, contact {contact:.2e} of 4100");
+    // Q15.16 places a twist to 2^-16 deg, which is k_T1 / 65536 of torque on
+    // the initial slope (0.46 kN m at 30,000 kN m/deg): eight such units.
+    let unit = |k1: f64| 8.0 * k1 / 65536.0;
+    assert!(
+        g10 < unit(5000.0) && contact < unit(30000.0),
+        "{g10} {contact}"
+    );
+}
+
 #[test]
 fn low_precision_tracks_f64_on_the_reference_history() {
     let h = reference_history();
