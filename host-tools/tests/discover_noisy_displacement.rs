@@ -171,9 +171,11 @@ fn stiffness_degradation_behind_a_noisy_displacement_is_named_alone() {
     }
 }
 
+/// Seed 16 named asymmetry at delta-BIC -19 before its signature gated (the
+/// peak ratio within the cycles' scatter of the model's).
 #[test]
 fn nothing_is_named_behind_a_noisy_displacement_when_nothing_is_missing() {
-    for seed in 10..12 {
+    for seed in [10, 11, 16] {
         let file = write(
             &format!("control-{seed}.csv"),
             &record(SINE, (0.2, 0.01), seed),
@@ -242,10 +244,15 @@ const TRIANGLES: Hidden = Hidden {
 /// sets where the model turns. Taken as measured, a chance imbalance between
 /// peaks and troughs read as asymmetry: on seed 5 at delta-BIC below -10
 /// (measured while this was built; seeds 0-19: on 2 with the reversals as
-/// measured, on 1, seed 16, with them placed from their neighbours).
+/// measured, on 1, seed 16, with them placed from their neighbours). On seed
+/// 16 the asymmetry fit (NRMSE 0.0240 to 0.0235, delta-BIC -36) took the
+/// offsets the placed reversals leave on the branches, with unequal strength
+/// and stiffness whose effects on the peaks cancel: the peak ratio is 1.008x
+/// the model's cycle by cycle, at t = 1.9 (seeds 0-59 and 20 sine records:
+/// asymmetry named on 3 before its signature gated, on none since).
 #[test]
 fn triangular_cycles_with_nothing_missing_name_nothing() {
-    for seed in [5, 6] {
+    for seed in [5, 6, 16] {
         let file = write(
             &format!("triangles-{seed}.csv"),
             &record(TRIANGLES, (0.2, 0.01), seed),

@@ -399,8 +399,8 @@ pub fn weigh(
     for (i, f) in reduced {
         singles[i] = f;
     }
-    // Effects whose signature is absent (pinching without its pattern) do
-    // not enter the comparison, unless their fit decides.
+    // Effects whose signature is absent (pinching or asymmetry without its
+    // pattern) do not enter the comparison, unless their fit decides.
     let signatures: Vec<(EffectRef, Option<Signature>)> = candidates
         .iter()
         .map(|&e| (e, signature::of(e, diagnosis)))
