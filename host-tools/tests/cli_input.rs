@@ -315,6 +315,16 @@ fn force_driven_fit_files_carry_their_mass_to_every_verb() {
     ]));
     let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     assert!(v["nrmse"].as_f64().unwrap() < 1e-4, "{v}");
+    // Another mass is the user's to choose, but it is said (found by review: it replaced the
+    // file's without a word).
+    let other = ok(hyst(&["simulate", &data, "--params", fit, "--mass", "100"]));
+    let notes = cli::stderr(&other);
+    assert!(
+        notes.contains("note: --mass 100 kg replaces the mass of") && notes.contains("(500 kg)"),
+        "{notes}"
+    );
+    let same = ok(hyst(&["simulate", &data, "--params", fit, "--mass", "500"]));
+    assert!(!cli::stderr(&same).contains("replaces the mass"));
 }
 
 /// A parameter set the record cannot be run with is an error naming the sample, not a table:
@@ -811,8 +821,8 @@ fn errors_in_json_values_name_their_line_and_column() {
     }
 }
 
-/// An output path that is one of the inputs, another output, or in a folder that does not exist
-/// is refused before any work, and the input is left as it was (found by review: `--out` equal to
+/// An output path that is one of the inputs, another output, in a folder that does not exist,
+/// or a folder, is refused before any work, and the input is left as it was (found by review: `--out` equal to
 /// the record replaced the only copy of a lab record, and a missing folder lost a finished run).
 #[test]
 fn an_output_that_would_overwrite_an_input_is_refused_first() {
@@ -843,6 +853,19 @@ fn an_output_that_would_overwrite_an_input_is_refused_first() {
         "discover", &record, "--model", "bw", "--report", missing,
     ]));
     assert!(e.contains("does not exist"), "{e}");
+    // A folder as the file: refused before the work, which it used to finish and then lose.
+    let folder = cli::tmp("a-folder");
+    std::fs::create_dir_all(&folder).unwrap();
+    let folder = folder.to_str().unwrap();
+    let e = err(hyst(&[
+        "discover", &record, "--model", "bw", "--report", folder,
+    ]));
+    assert!(
+        e.contains(&format!(
+            "--report {folder}: that is a folder; give a file name"
+        )),
+        "{e}"
+    );
 }
 
 /// A force-driven record with one row missing is refused at the gap, against the record's

@@ -120,9 +120,15 @@ pub fn run_fe(args: FeArgs) -> anyhow::Result<()> {
     let log = (!args.json && !std::io::stderr().is_terminal())
         .then(|| Bar::new(&format!("fe {}", args.specimen.display()), false));
     let show = |p: &Progress| {
+        // Before any strain there is no internal energy: no ratio to show.
+        let ke_ie = if p.ke_ie.is_finite() {
+            format!("{:.3}", p.ke_ie)
+        } else {
+            "-".to_string()
+        };
         let state = format!(
-            "t = {:.4e} s  T = {:.2} kN m  KE/IE = {:.3}",
-            p.t, p.torque_knm, p.ke_ie
+            "t = {:.4e} s  T = {:.2} kN m  KE/IE = {ke_ie}",
+            p.t, p.torque_knm
         );
         match &log {
             Some(log) => log.status(&format!(

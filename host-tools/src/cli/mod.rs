@@ -186,7 +186,8 @@ impl Command {
 
     /// Refuses, before any work, an output that is one of the inputs or another output (the
     /// only copy of a lab record was overwritten by a typo: found by review) or whose folder
-    /// does not exist (the result of a long run was lost at the end). `hyst fe --out` names a
+    /// does not exist (the result of a long run was lost at the end), or that is a folder.
+    /// `hyst fe --out` names a
     /// folder the run makes: the folder above it must exist, and `--backbone` may not take the
     /// name of a file the run writes there (it replaced `torque_twist.csv`: found by review).
     fn check_outputs(&self) -> anyhow::Result<()> {
@@ -216,6 +217,10 @@ impl Command {
                     p.display(),
                     d.display()
                 );
+            }
+            // Found by review: the work was done and then lost at the write.
+            if p.is_dir() {
+                anyhow::bail!("{flag} {}: that is a folder; give a file name", p.display());
             }
         }
         if let Command::Fe(a) = self {

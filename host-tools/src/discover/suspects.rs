@@ -575,6 +575,9 @@ pub fn weigh(
                     "On its own it changes the BIC by {delta:+.0}; the best model found, {best_name} (NRMSE {best_nrmse:.4}), changes it by {best_gain:+.0} without it: not significant."
                 )),
                 Relation::Unfitted => evidence.push_str("Not significant."),
+                // Unfitted (found by review: "changes the BIC by +inf").
+                Relation::NoSignature if delta.is_infinite() => evidence
+                    .push_str("The residual does not show its pattern either: not significant."),
                 Relation::NoSignature => evidence.push_str(&format!(
                     "On its own it changes the BIC by {delta:+.0}, but the residual does not show its pattern: not significant."
                 )),
