@@ -235,6 +235,22 @@ impl Header<'_> {
             let name_role = role_of_name(&h.name);
             let unit_text = self.unit_text(i)?;
             let parsed = unit_text.as_ref().and_then(|(t, _)| Unit::parse(t));
+            // `disp_mm (cm)` states two units; the bracket's used to win without a word
+            // (found by review).
+            let in_name = super::columns::parse_header_field(&h.name)
+                .unit
+                .and_then(|t| Unit::parse(&t));
+            if let (Some(a), Some(b), None) = (in_name, parsed, unit_opt[i]) {
+                if a != b {
+                    return Err(self.err(
+                        i + 1,
+                        format!(
+                            "column '{}' states two units, {a} in its name and {b} after it: keep one",
+                            h.text
+                        ),
+                    ));
+                }
+            }
             let unit = unit_opt[i].or(parsed);
             let (role, source) = if let Some(r) = role_opt[i] {
                 (r, Source::Options)

@@ -117,6 +117,13 @@ fn malformed_csv_table() {
              unit: expected N, kN, MN, kip, lbf",
         ),
         (
+            "two_units.csv",
+            "disp_mm (cm),force_kN\n0,0\n1,1\n".into(),
+            d.clone(),
+            "two_units.csv:1:1: column 'disp_mm (cm)' states two units, mm in its name and cm \
+             after it: keep one",
+        ),
+        (
             "nanometres.csv",
             "displacement (nm),force (kN)\n0,0\n".into(),
             d.clone(),
