@@ -1100,7 +1100,7 @@ fn settings_beyond_memory_are_refused_with_their_limit() {
         "1",
     ]));
     assert!(
-        e.contains("NSGA-II setting `population` = 4000000000: expected 2 to 1,000,000"),
+        e.contains("NSGA-II setting `population` = 4000000000: expected 2 to 10,000"),
         "{e}"
     );
 }
