@@ -263,9 +263,11 @@ impl<S: Scalar> Branch<S> {
             // by review: 29 of 400 first reloadings of the docs' column
             // missed it in f64, and f32 and Q15.16 missed others, up to 45%
             // of peak torque apart).
-            // `S::line`: in Q15.16 the product alone saturated on stiff
-            // columns where the sum does not, and the contact came too early
-            // (found by review).
+            // `S::line`, as the bound's value is computed: in Q15.16 one
+            // range check on the sum, so a product out of range whose sum is
+            // not (a steep segment from a low torque) stays exact. (The
+            // review's stiff column needed more: the sum itself out of
+            // range, below.)
             let yb = if next_vertex == Some(b) {
                 self.v[i + 1][1]
             } else {

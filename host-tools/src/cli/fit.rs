@@ -230,19 +230,18 @@ impl Progress for Bar {
 /// parameter file's `m`. A value that is not a positive number is an error
 /// that says where it came from.
 pub fn mass_of(given: Option<f64>, file: Option<&ParamFile>) -> Result<Option<f64>> {
-    let (mass, source) = match (given, file) {
-        (Some(m), Some(f)) => {
-            // Simulating a fitted spring with another mass is a fair question, but
-            // the answer must say it is not the file's oscillator (found by review).
-            if let Some(&fm) = f.values.get("m").filter(|&&fm| fm != m) {
-                eprintln!(
-                    "note: --mass {m} kg replaces the mass of {} ({fm} kg)",
-                    f.at(&["m"])
-                );
-            }
-            (m, "--mass".to_string())
+    // Simulating a fitted spring with another mass is a fair question, but the
+    // answer must say it is not the file's oscillator (found by review).
+    if let (Some(m), Some(f)) = (given, file) {
+        if let Some(&fm) = f.values.get("m").filter(|&&fm| fm != m) {
+            eprintln!(
+                "note: --mass {m} kg replaces the mass of {} ({fm} kg)",
+                f.at(&["m"])
+            );
         }
-        (Some(m), None) => (m, "--mass".to_string()),
+    }
+    let (mass, source) = match (given, file) {
+        (Some(m), _) => (m, "--mass".to_string()),
         (None, Some(f)) => match f.values.get("m") {
             Some(&m) => (m, f.at(&["m"])),
             None => return Ok(None),

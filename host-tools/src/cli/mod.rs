@@ -187,13 +187,24 @@ impl Command {
     /// Refuses, before any work, an output that is one of the inputs or another output (the
     /// only copy of a lab record was overwritten by a typo: found by review) or whose folder
     /// does not exist (the result of a long run was lost at the end), or that is a folder.
-    /// `hyst fe --out` names a
-    /// folder the run makes: the folder above it must exist, and `--backbone` may not take the
-    /// name of a file the run writes there (it replaced `torque_twist.csv`: found by review).
+    /// `hyst fe --out` names a folder the run makes: the folder above it must exist, and
+    /// `--backbone` may not take the name of a file the run writes there (it replaced
+    /// `torque_twist.csv`: found by review).
     fn check_outputs(&self) -> anyhow::Result<()> {
         let same = |a: &Path, b: &Path| match (a.canonicalize(), b.canonicalize()) {
             (Ok(a), Ok(b)) => a == b,
             _ => a == b,
+        };
+        let folder_exists = |flag: &str, p: &Path| {
+            let folder = p.parent().filter(|d| !d.as_os_str().is_empty());
+            match folder.filter(|d| !d.is_dir()) {
+                Some(d) => Err(anyhow::anyhow!(
+                    "{flag} {}: the folder {} does not exist",
+                    p.display(),
+                    d.display()
+                )),
+                None => Ok(()),
+            }
         };
         let (inputs, outputs) = self.files();
         for (k, &(flag, p)) in outputs.iter().enumerate() {
@@ -210,14 +221,7 @@ impl Command {
                     p.display()
                 );
             }
-            let folder = p.parent().filter(|d| !d.as_os_str().is_empty());
-            if let Some(d) = folder.filter(|d| !d.is_dir()) {
-                anyhow::bail!(
-                    "{flag} {}: the folder {} does not exist",
-                    p.display(),
-                    d.display()
-                );
-            }
+            folder_exists(flag, p)?;
             // Found by review: the work was done and then lost at the write.
             if p.is_dir() {
                 anyhow::bail!("{flag} {}: that is a folder; give a file name", p.display());
@@ -226,14 +230,7 @@ impl Command {
         if let Command::Fe(a) = self {
             if let Some(out) = &a.out {
                 // The run makes its folder, not the folders above it.
-                let above = out.parent().filter(|d| !d.as_os_str().is_empty());
-                if let Some(d) = above.filter(|d| !d.is_dir()) {
-                    anyhow::bail!(
-                        "--out {}: the folder {} does not exist",
-                        out.display(),
-                        d.display()
-                    );
-                }
+                folder_exists("--out", out)?;
                 if out.exists() && !out.is_dir() {
                     anyhow::bail!("--out {}: expected a folder, found a file", out.display());
                 }

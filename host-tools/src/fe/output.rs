@@ -225,6 +225,10 @@ fn write_atomically(
     std::fs::rename(&tmp, path)
 }
 
+/// The names of the VTK snapshots before their four-digit index: concrete,
+/// then bars.
+pub const VTK_PREFIXES: [&str; 2] = ["concrete_", "rebar_"];
+
 /// Writes `concrete_NNNN.vtk` (hexahedra: displacement and velocity at
 /// nodes; stress, strain and the material's history fields per element)
 /// and `rebar_NNNN.vtk` (trusses: axial strain and stress) into `dir`.
@@ -234,7 +238,7 @@ pub fn write_vtk<M: SolidMaterial, B: BarMaterial>(
     index: usize,
 ) -> std::io::Result<[PathBuf; 2]> {
     let m = &s.model;
-    let conc = dir.join(format!("concrete_{index:04}.vtk"));
+    let conc = dir.join(format!("{}{index:04}.vtk", VTK_PREFIXES[0]));
     write_atomically(&conc, |w| {
         writeln!(w, "# vtk DataFile Version 3.0")?;
         writeln!(w, "hyst fe: concrete at t = {:.6e} s", s.t)?;
@@ -308,7 +312,7 @@ pub fn write_vtk<M: SolidMaterial, B: BarMaterial>(
         }
         Ok(())
     })?;
-    let bars = dir.join(format!("rebar_{index:04}.vtk"));
+    let bars = dir.join(format!("{}{index:04}.vtk", VTK_PREFIXES[1]));
     let emb = &m.embedding;
     write_atomically(&bars, |w| {
         writeln!(w, "# vtk DataFile Version 3.0")?;

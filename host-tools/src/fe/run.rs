@@ -185,23 +185,32 @@ fn fallen_below_peak(samples: &[Sample], fraction: f64) -> bool {
         && output::cracking(samples).is_some_and(|(_, c)| c < peak_at)
 }
 
+/// The files a run with `--out` writes into its folder, besides the VTK
+/// snapshots ([`output::VTK_PREFIXES`]).
+const TORQUE_TWIST_CSV: &str = "torque_twist.csv";
+const TORQUE_TWIST_SVG: &str = "torque_twist.svg";
+const REBAR_STRAINS_CSV: &str = "rebar_strains.csv";
+const SECTION_SHEAR_CSV: &str = "section_shear.csv";
+const SECTION_SHEAR_SVG: &str = "section_shear.svg";
+
 /// Whether a run with `--out` writes a file of this name into its folder
 /// (the curves, bar strains, section shear and the VTK snapshots), so that
 /// no other output may take it.
 pub fn writes_into_out(name: &str) -> bool {
-    const FILES: [&str; 5] = [
-        "torque_twist.csv",
-        "torque_twist.svg",
-        "rebar_strains.csv",
-        "section_shear.csv",
-        "section_shear.svg",
-    ];
     let snapshot = |prefix: &str| {
         name.strip_prefix(prefix)
             .and_then(|r| r.strip_suffix(".vtk"))
             .is_some_and(|n| n.len() >= 4 && n.bytes().all(|b| b.is_ascii_digit()))
     };
-    FILES.contains(&name) || snapshot("concrete_") || snapshot("rebar_")
+    [
+        TORQUE_TWIST_CSV,
+        TORQUE_TWIST_SVG,
+        REBAR_STRAINS_CSV,
+        SECTION_SHEAR_CSV,
+        SECTION_SHEAR_SVG,
+    ]
+    .contains(&name)
+        || output::VTK_PREFIXES.iter().any(|p| snapshot(p))
 }
 
 /// The bar sets whose largest strains `rebar_strains.csv` reports, in its
@@ -264,8 +273,8 @@ pub fn run<M: SolidMaterial, B: BarMaterial>(
         if !dir.is_dir() {
             std::fs::create_dir(dir).with_context(|| format!("creating {}", dir.display()))?;
         }
-        let tt = dir.join("torque_twist.csv");
-        let rb = dir.join("rebar_strains.csv");
+        let tt = dir.join(TORQUE_TWIST_CSV);
+        let rb = dir.join(REBAR_STRAINS_CSV);
         let csv = Csv::create(&tt, &TORQUE_TWIST_HEADER)
             .with_context(|| format!("creating {}", tt.display()))?;
         let mut header = vec![
@@ -404,10 +413,10 @@ pub fn run<M: SolidMaterial, B: BarMaterial>(
         })
         .collect();
     if let Some((dir, _, _)) = &files {
-        let csv = dir.join("section_shear.csv");
+        let csv = dir.join(SECTION_SHEAR_CSV);
         cut.write_csv(&stages, &csv)
             .with_context(|| format!("writing {}", csv.display()))?;
-        let svg = dir.join("section_shear.svg");
+        let svg = dir.join(SECTION_SHEAR_SVG);
         let title = format!("{}: shear stress at z = {:.3} m", spec.name, cut.z);
         std::fs::write(&svg, cut.figure(&title, &stages)?.to_svg())
             .with_context(|| format!("writing {}", svg.display()))?;
@@ -453,7 +462,7 @@ pub fn run<M: SolidMaterial, B: BarMaterial>(
             "{}: torque against twist at {} mm elements",
             spec.name, spec.analysis.element_size_mm
         );
-        let svg = dir.join("torque_twist.svg");
+        let svg = dir.join(TORQUE_TWIST_SVG);
         let fig = torque_twist::figure(&title, samples, marks, spec.reference.table_2_1.as_ref())?;
         std::fs::write(&svg, fig.to_svg()).with_context(|| format!("writing {}", svg.display()))?;
         outputs.push(svg);
