@@ -322,6 +322,103 @@ impl<S: Scalar> Branch<S> {
         b
     }
 
+    /// The way back from `from` (motion coordinates of the return) to the
+    /// start of `path`, the rule branch followed up to `from` on its segment
+    /// `seg` (gap G9 in `docs/phm.md`): the least concave majorant of that
+    /// path, so that the return lies on or above it everywhere and the
+    /// excursion dissipates. Past zero torque a rule branch reloads along a
+    /// pinched line that can be steeper than the unloading before it, and a
+    /// straight chord back cut below the path: cycles between such a point
+    /// and the branch's start returned energy (after -2.75, 11.375 on the
+    /// test curve, 0.64 a cycle between 0.625 and 4.375; found when a turn at
+    /// a chord's target first resumed the branch). The return follows the
+    /// path back to its zero-torque vertex where the path is not concave,
+    /// then goes straight to the start. The unloading part of a rule branch
+    /// is concave as seen from the return (its slopes only flatten,
+    /// [`push_unloading`](Self::push_unloading)), so only the vertices from
+    /// zero torque on can lie above the chord; with at most two reloading
+    /// points per branch the return needs at most five vertices.
+    pub(crate) fn back<const N: usize>(
+        dir: S,
+        from: [S; 2],
+        path: &Branch<S>,
+        seg: u8,
+        bound: &Backbone<S, N>,
+    ) -> Self {
+        let first = (path.zero as usize).max(1);
+        Self::way_back(dir, from, path, seg, first, true, bound)
+    }
+
+    /// The way back from `from` (motion coordinates of the return) along
+    /// `chord` (or the ray it became), followed up to `from` on its segment
+    /// `seg`, to its start: the same polyline reversed, so an excursion along
+    /// a chord that the counter does not count does no work and closes where
+    /// it began (G8).
+    pub(crate) fn retrace<const N: usize>(
+        dir: S,
+        from: [S; 2],
+        chord: &Branch<S>,
+        seg: u8,
+        bound: &Backbone<S, N>,
+    ) -> Self {
+        Self::way_back(dir, from, chord, seg, 1, false, bound)
+    }
+
+    /// A chord from `from` to the start of `path` through some of the
+    /// vertices `first..=seg` of `path` (in return coordinates): the
+    /// steepest one ahead each time (`steepest`: the concave majorant of
+    /// [`back`](Self::back)), or every one ([`retrace`](Self::retrace)). The
+    /// start is always the last vertex; the ones between are as many as fit.
+    fn way_back<const N: usize>(
+        dir: S,
+        from: [S; 2],
+        path: &Branch<S>,
+        seg: u8,
+        first: usize,
+        steepest: bool,
+        bound: &Backbone<S, N>,
+    ) -> Self {
+        let to = [-path.v[0][0], -path.v[0][1]];
+        if !(to[0] > from[0]) {
+            return Self::chord(dir, from, to, bound);
+        }
+        let mut b = Self::starting(Kind::Chord, dir, from);
+        let last = (seg as usize).min((path.n as usize).saturating_sub(1));
+        // Candidates are tried farthest first (the farthest wins a tie).
+        let mut next = last + 1;
+        while next > first && (b.n as usize) + 1 < VERTICES {
+            let [x0, y0] = b.last();
+            let ahead = |k: usize| {
+                let p = [-path.v[k][0], -path.v[k][1]];
+                (p[0] > x0 && p[0] < to[0]).then_some(p)
+            };
+            let pick = if steepest {
+                let slope = |p: [S; 2]| (p[1] - y0) / (p[0] - x0);
+                let mut best = slope(to);
+                let mut pick = None;
+                for k in first..next {
+                    if let Some(p) = ahead(k) {
+                        if slope(p) > best {
+                            best = slope(p);
+                            pick = Some(k);
+                        }
+                    }
+                }
+                pick
+            } else {
+                (first..next).rev().find(|&k| ahead(k).is_some())
+            };
+            let Some(k) = pick else {
+                break;
+            };
+            b.append(-path.v[k][0], -path.v[k][1]);
+            next = k;
+        }
+        b.append(to[0], to[1]);
+        b.finish(bound);
+        b
+    }
+
     /// Torque (motion coordinates) at `x`, at or past the first vertex, on
     /// the polyline and its ray (without the bound).
     pub(crate) fn torque_at(&self, x: S) -> S {

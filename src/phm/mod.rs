@@ -22,11 +22,14 @@
 //!
 //! The thesis' rules describe unloading from the primary curve and full
 //! reloading. A partial unloading that reverses before zero torque (or after
-//! it, while the twist has not yet crossed zero) reloads along a chord back
-//! to the point where the unloading began and there resumes the branch it
-//! left (return-point memory); a partial reloading along such a chord that
-//! reverses before the cycle counter counts it goes back along the chord in
-//! the same way. No closed cycle the tests search returns energy
+//! it, while the twist has not yet crossed zero) reloads back to the point
+//! where the unloading began, along the least concave majorant of the path
+//! it came down (a straight chord unless that path is pinched past zero
+//! torque), and there resumes the branch it left (return-point memory); a
+//! partial reloading along such a chord that reverses before the cycle
+//! counter counts it goes back the way it came in the same way. A chord
+//! hands over on reaching its target, so a turn exactly there is a turn on
+//! the resumed branch. No closed cycle the tests search returns energy
 //! (`docs/phm.md`, "Passivity"). The branches to resume
 //! are kept in a stack of fixed capacity `M` (a `heapless::Deque`, capacity in
 //! the type); when it is full the oldest entry is dropped (O(1)) and counted
@@ -307,22 +310,39 @@ impl<S: Scalar, const N: usize, const M: usize> Phm<S, N, M> {
         let retrace = st.kind == Kind::Chord && !levels[from.index()].counts(x, theta_c, band);
         let back = retrace || (st.kind == Kind::Rule && !(x > S::ZERO));
         let branch = if t > S::ZERO && !back {
-            // Unloading: rules 2-4 from this point.
+            // Unloading: rules 2-4 from this point. T_m is the torque of the
+            // path at theta_m (G4); past a chord's target the path is the
+            // branch resumed there (remembered two entries down), not the
+            // chord extended: after 8, -8, 7.7, 7.0, 7.65 on the test curve
+            // that gave 19.84 where the path is at 18.26 (found by review).
             let on_path = |xm: S| {
-                if current.branch.kind == Kind::Envelope || !(xm < current.branch.contact) {
+                let (mut b, mut kind, mut below) = (&current.branch, st.kind, self.depth);
+                while kind == Kind::Chord && xm > b.last()[0] && below >= 2 {
+                    below -= 2;
+                    let Some(f) = self.memory.get(below) else {
+                        break;
+                    };
+                    (b, kind) = (&f.branch, f.kind);
+                }
+                if kind == Kind::Envelope || !(xm < b.contact) {
                     self.bound(d).bound(xm).0
                 } else {
-                    current.branch.torque_at(xm)
+                    b.torque_at(xm)
                 }
             };
             levels[from.index()].count_unloading((x, t), on_path, theta_c, band);
             rules::unloading_branch(c, self.params.curves(), from, [x, t], &levels)
         } else {
             // Reloading before zero torque, or one of the two above: back
-            // to where the branch followed began.
-            let to = [-current.branch.v[0][0], -current.branch.v[0][1]];
+            // to where the branch followed began: along a rule branch's
+            // concave majorant, or the way a chord (or ray) came.
             let from = [signed(dir, st.twist), signed(dir, st.torque)];
-            Branch::chord(dir, from, to, self.bound(dir))
+            let (path, bound) = (&current.branch, self.bound(dir));
+            if st.kind == Kind::Rule {
+                Branch::back(dir, from, path, st.seg, bound)
+            } else {
+                Branch::retrace(dir, from, path, st.seg, bound)
+            }
         };
         st.kind = branch.kind;
         st.seg = 0;
@@ -411,8 +431,8 @@ impl<S: Scalar, const N: usize, const M: usize> Phm<S, N, M> {
             // the remembered branch resumes. (A step across both went
             // straight to the primary curve: one step from 4 to 7 after 8, 2,
             // 5, 4 on the test curve gave a torque of 20, small steps 16.67.)
-            // (A chord has two vertices, its start and its target.)
-            let on_ray = st.kind == Kind::Chord && b.contact > b.v[1][0];
+            // (A chord's last vertex is its target.)
+            let on_ray = st.kind == Kind::Chord && b.contact > b.last()[0];
             if st.kind != Kind::Envelope && !on_ray && !(x < b.contact) {
                 self.reach_envelope(st, pending, x);
             }
@@ -424,7 +444,15 @@ impl<S: Scalar, const N: usize, const M: usize> Phm<S, N, M> {
             }
             let b = &self.slots[st.slot as usize].branch;
             let mut resumed = None;
-            while st.seg + 1 < b.n && x > b.v[st.seg as usize + 1][0] {
+            // A chord hands over on reaching its target, not only past it: a
+            // turn exactly there is a turn on the remembered branch (it used
+            // to retrace the chord and remember one more entry, so cycles
+            // repeated between two fixed twists did no work after the first
+            // and filled the memory).
+            while st.seg + 1 < b.n && {
+                let next = b.v[st.seg as usize + 1][0];
+                x > next || (x == next && st.kind == Kind::Chord && st.seg + 2 == b.n)
+            } {
                 st.seg += 1;
                 match st.kind {
                     Kind::Rule if st.seg == b.across => pending.clear(),

@@ -65,8 +65,9 @@ pub fn work_along<const N: usize, const M: usize>(
 
 /// The work over a cycle through `corners` (from the first through the
 /// others back to the first), repeated until the element's state after a
-/// repetition (torque and tangent, what it follows, the rule memory and the
-/// branch) is the one after the repetition before: that closed cycle's work,
+/// repetition (torque and tangent, what it follows, the rule memory, the
+/// branch and the depth of the inner-cycle memory) is the one after the
+/// repetition before: that closed cycle's work,
 /// or `None` if the state has not repeated within `repeats` repetitions (or
 /// `corners` is empty). The element is first taken to `corners[0]`, whose
 /// work is not counted; steps as in [`work_along`].
@@ -80,7 +81,15 @@ pub fn closed_cycle_work<const N: usize, const M: usize>(
         return Ok(None);
     };
     work_along(el, first, h)?;
-    let state = |e: &Phm<f64, N, M>| (e.response(), e.committed().kind(), *e.levels(), *e.branch());
+    let state = |e: &Phm<f64, N, M>| {
+        (
+            e.response(),
+            e.committed().kind(),
+            *e.levels(),
+            *e.branch(),
+            e.memory_depth(),
+        )
+    };
     let mut before = state(el);
     for _ in 0..repeats {
         let mut w = 0.0;
