@@ -261,6 +261,17 @@ fn records_without_anything_to_fit_are_refused() {
     );
     let e = cli::err(hyst(&["fit", &huge, "--method", "lsq"]));
     assert!(e.contains("found values up to 4e155 kN"), "{e}");
+    // Forces that vary but whose squares underflow to zero: the fit reported NRMSE 0 (found
+    // by review).
+    let tiny = write(
+        "tiny-force.csv",
+        &rows(&|i| ((i % 5) as f64, 1e-299 * (i % 5) as f64)),
+    );
+    let e = cli::err(hyst(&["fit", &tiny, "--method", "lsq"]));
+    assert!(
+        e.contains("expected forces whose squares do not underflow to zero, found values only up to 4e-299 kN"),
+        "{e}"
+    );
     // A column record scaled down: at 1e-50 its beta scales as up to 1e200 (displacement^-n,
     // n up to 4) and it fits; at 1e-160 beta overflows within its search range, and the fit
     // ended at NRMSE 0.22 (against 6e-8 at 1e-150) without a word.
@@ -425,6 +436,13 @@ fn force_driven_verbs_make_up_no_damping_and_place_a_bad_mass() {
             "{verb}: {e}"
         );
     }
+    // Positive but too small for the mass-normalised oscillator: the fit blamed k0 (found by
+    // review).
+    let e = err(hyst(&["fit", &data, "--mass", "1e-308", "--method", "lsq"]));
+    assert!(
+        e.contains("--mass 1e-308 kg is too small for this record") && !e.contains("k0"),
+        "{e}"
+    );
 }
 
 /// A value the device's arithmetic cannot hold is refused by name: Q15.16 holds +-32768 in

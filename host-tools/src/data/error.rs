@@ -38,7 +38,7 @@ impl DataError {
         DataError {
             file: file.to_path_buf(),
             location: Location::Text { line, column },
-            message: message.into(),
+            message: visible(message.into()),
         }
     }
 
@@ -47,7 +47,7 @@ impl DataError {
         DataError {
             file: file.to_path_buf(),
             location: Location::File,
-            message: message.into(),
+            message: visible(message.into()),
         }
     }
 
@@ -55,8 +55,8 @@ impl DataError {
     pub fn json(file: &Path, path: impl Into<String>, message: impl Into<String>) -> Self {
         DataError {
             file: file.to_path_buf(),
-            location: Location::Json(path.into()),
-            message: message.into(),
+            location: Location::Json(visible(path.into())),
+            message: visible(message.into()),
         }
     }
 
@@ -74,6 +74,28 @@ impl DataError {
     pub fn message(&self) -> &str {
         &self.message
     }
+}
+
+/// `text` with the characters a terminal does not show written as escapes
+/// (`\u{0}`, `\u{feff}`): control characters, byte-order marks and
+/// zero-width characters. A message echoes what it found, and a NUL or a
+/// byte-order mark in the middle of a file used to be printed raw: "found
+/// '1.0'" for a field that is not "1.0" (found by review).
+fn visible(text: String) -> String {
+    let hidden =
+        |c: char| c.is_control() || matches!(c, '\u{200b}'..='\u{200f}' | '\u{2060}' | '\u{feff}');
+    if !text.chars().any(hidden) {
+        return text;
+    }
+    text.chars()
+        .map(|c| {
+            if hidden(c) {
+                format!("\\u{{{:x}}}", c as u32)
+            } else {
+                c.to_string()
+            }
+        })
+        .collect()
 }
 
 impl fmt::Display for DataError {

@@ -34,25 +34,57 @@ pub enum JsonLayout {
 }
 
 impl JsonLayout {
-    /// Recognises the layout of a document by its keys.
+    /// Recognises the layout of a document by its keys: `None` when no
+    /// layout or more than one matches (see [`matching`](Self::matching)).
     pub fn detect(root: &Value) -> Option<JsonLayout> {
-        let obj = root.as_object()?;
+        match Self::matching(root)[..] {
+            [one] => Some(one),
+            _ => None,
+        }
+    }
+
+    /// Every layout whose keys the document has. A document with two (say
+    /// `data.disp`/`data.force` and `test.displacement`/`test.force`) used
+    /// to be read by the first and the other passed over in silence.
+    pub fn matching(root: &Value) -> Vec<JsonLayout> {
+        let Some(obj) = root.as_object() else {
+            return Vec::new();
+        };
         let has = |o: Option<&Value>, keys: &[&str]| {
             o.and_then(Value::as_object)
                 .is_some_and(|m| keys.iter().all(|k| m.contains_key(*k)))
         };
-        if has(obj.get("data"), &["disp", "force"]) {
-            Some(JsonLayout::PeerSpd)
-        } else if has(obj.get("test"), &["displacement", "force"]) {
-            Some(JsonLayout::FastenerConnection)
-        } else if has(obj.get("test"), &["axialDef", "axialForce"]) {
-            Some(JsonLayout::SimCenterBrace)
-        } else if obj.get("data").is_some_and(Value::is_array)
-            && obj.contains_key("displacement units")
-        {
-            Some(JsonLayout::FrictionDamper)
-        } else {
-            None
+        [
+            (
+                JsonLayout::PeerSpd,
+                has(obj.get("data"), &["disp", "force"]),
+            ),
+            (
+                JsonLayout::FastenerConnection,
+                has(obj.get("test"), &["displacement", "force"]),
+            ),
+            (
+                JsonLayout::SimCenterBrace,
+                has(obj.get("test"), &["axialDef", "axialForce"]),
+            ),
+            (
+                JsonLayout::FrictionDamper,
+                obj.get("data").is_some_and(Value::is_array)
+                    && obj.contains_key("displacement units"),
+            ),
+        ]
+        .into_iter()
+        .filter_map(|(layout, found)| found.then_some(layout))
+        .collect()
+    }
+
+    /// The keys that identify the layout, as the messages name them.
+    pub fn keys(self) -> &'static str {
+        match self {
+            JsonLayout::PeerSpd => "data.disp/data.force",
+            JsonLayout::FastenerConnection => "test.displacement/test.force",
+            JsonLayout::SimCenterBrace => "test.axialDef/test.axialForce",
+            JsonLayout::FrictionDamper => "data rows with 'displacement units'",
         }
     }
 }
@@ -303,6 +335,18 @@ pub(crate) fn parse(file: &Path, text: &str, options: &ReadOptions) -> Result<Re
             format!("invalid JSON: {e}"),
         )
     })?;
+    let layouts = JsonLayout::matching(&root);
+    if let [a, b, ..] = layouts[..] {
+        return Err(DataError::file(
+            file,
+            format!(
+                "expected one known JSON layout, found two: {} and {}; \
+                 keep the one to read in a file of its own",
+                a.keys(),
+                b.keys()
+            ),
+        ));
+    }
     let (Some(layout), Some(obj)) = (JsonLayout::detect(&root), root.as_object()) else {
         let keys = root
             .as_object()

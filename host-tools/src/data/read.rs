@@ -116,9 +116,15 @@ impl ReadOptions {
                 } else {
                     format!("{hz:e}")
                 };
+                // 1e-320 Hz was refused as if it were not positive (found by review).
+                let expected = if hz > 0.0 && hz.is_finite() {
+                    "a sample rate whose interval 1/rate is finite"
+                } else {
+                    "a positive finite sample rate"
+                };
                 Err(DataError::file(
                     file,
-                    format!("expected a positive finite sample rate, found {shown} Hz"),
+                    format!("expected {expected}, found {shown} Hz"),
                 ))
             }
             other => Ok(other),

@@ -266,14 +266,23 @@ impl Experiment {
                 if !(mass.is_finite() && mass > 0.0) {
                     bail!("--mass must be a positive number of kg, got {mass}");
                 }
-                let dt = uniform_step(record)?;
                 // kg = N s^2/m = 1e-6 kN s^2/mm
+                let m = mass * 1e-6;
+                // The oscillator is mass-normalised: --mass 1e-308 was taken and the
+                // failure blamed on k0 (found by review).
+                let peak = f.iter().fold(0.0f64, |a, x| a.max(x.abs()));
+                if !(m.is_normal() && (peak / m).is_finite()) {
+                    bail!(
+                        "{src}: --mass {mass:e} kg is too small for this record: its peak force over the mass ({peak:e} kN / {m:e} kN s^2/mm) is beyond the range of f64"
+                    );
+                }
+                let dt = uniform_step(record)?;
                 Ok(Experiment {
                     input: f.to_vec(),
                     output: u.to_vec(),
                     drive: Drive::Force {
                         dt,
-                        mass: mass * 1e-6,
+                        mass: m,
                         between: Between::Linear,
                     },
                 })

@@ -178,6 +178,21 @@ fn malformed_csv_table() {
             d.clone(),
             "quoted.csv:2:1: expected a number for column 'disp_mm', found '\"1.0\"'",
         ),
+        // What a terminal would not show is written as an escape: a NUL or a byte-order mark
+        // inside the file was echoed raw, "found '1.0'" for a field that is not (found by
+        // review).
+        (
+            "nul.csv",
+            "disp_mm,force_kN\n1.0\u{0},2\n".into(),
+            d.clone(),
+            "nul.csv:2:1: expected a number for column 'disp_mm', found '1.0\\u{0}'",
+        ),
+        (
+            "bom_inside.csv",
+            "disp_mm,force_kN\n0,0\n\u{feff}2.5,2\n".into(),
+            d.clone(),
+            "bom_inside.csv:3:1: expected a number for column 'disp_mm', found '\\u{feff}2.5'",
+        ),
         (
             "ambiguous.csv",
             "disp (mm),drift (mm),force (kN)\n0,0,0\n".into(),
@@ -225,7 +240,7 @@ fn malformed_csv_table() {
             "tiny-rate.csv",
             "disp_mm,force_kN\n0,0\n".into(),
             ReadOptions::default().sample_rate(1e-320),
-            "tiny-rate.csv: expected a positive finite sample rate, found 1e-320 Hz",
+            "tiny-rate.csv: expected a sample rate whose interval 1/rate is finite, found 1e-320 Hz",
         ),
         (
             "units_twice.csv",

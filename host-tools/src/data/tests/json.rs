@@ -159,7 +159,7 @@ fn simcenter_braces_by_convention() {
 
 #[test]
 fn json_errors_name_the_place() {
-    let cases: [(&str, &str); 8] = [
+    let cases: [(&str, &str); 9] = [
         (
             r#"{"data": {"disp": [1, 2], "force": [1, "x"]}}"#,
             r#"t.json: at data.force[1]: expected a finite number, found "x""#,
@@ -176,6 +176,12 @@ fn json_errors_name_the_place() {
             r#"{"rows": []}"#,
             "t.json: expected a known JSON layout (data.disp/data.force, test.displacement/test.force, \
              test.axialDef/test.axialForce, or data rows with 'displacement units'), found keys 'rows'",
+        ),
+        (
+            // Found by review: the second layout was passed over in silence.
+            r#"{"data": {"disp": [0, 1], "force": [0, 2]}, "test": {"displacement": [0, 1], "force": [0, 2]}}"#,
+            "t.json: expected one known JSON layout, found two: data.disp/data.force and \
+             test.displacement/test.force; keep the one to read in a file of its own",
         ),
         ("{\n  \"data\": [1,\n", "t.json:3:1: invalid JSON: EOF while parsing a value at line 3 column 0"),
         (
