@@ -364,6 +364,28 @@ impl<S: Scalar> Branch<S> {
         Self::way_back(dir, from, chord, seg, 1, false, bound)
     }
 
+    /// Whether an element that followed this branch onto the primary curve
+    /// and is now at `x` (motion coordinates) is on the torque cap, met after
+    /// the branch's start and before zero twist (G9): a reversal there goes
+    /// back to where the branch began. A branch that starts above the cap is
+    /// cut down to it at once, a jump that no way back retraces (with
+    /// coefficients scaled as a fit may, going back then returned energy).
+    pub(crate) fn capped_before_zero_twist(&self, x: S) -> bool {
+        !(x > S::ZERO) && self.n > 0 && self.contact > self.v[0][0]
+    }
+
+    /// The branch up to where it met `bound`, that point included: the path
+    /// an element followed before the primary curve took over (G9, a
+    /// reversal on the torque cap before zero twist). The contact lies past
+    /// zero torque, so the vertices before it and it fit.
+    pub(crate) fn up_to_contact<const N: usize>(&self, bound: &Backbone<S, N>) -> Self {
+        let mut b = *self;
+        let n = (self.n as usize).min(VERTICES);
+        b.n = (1..n).take_while(|&i| self.v[i][0] < self.contact).count() as u8 + 1;
+        b.append(self.contact, bound.bound(self.contact).0);
+        b
+    }
+
     /// A chord from `from` to the start of `path` through some of the
     /// vertices `first..=seg` of `path` (in return coordinates): the
     /// steepest one ahead each time (`steepest`: the concave majorant of

@@ -307,8 +307,18 @@ impl<S: Scalar, const N: usize, const M: usize> Phm<S, N, M> {
         //   torque and reloaded inside the path they came up on; cycles
         //   repeated between such a point and the branch's start returned
         //   energy (-1.28 a cycle between -4.5 and -1 after -11.5, -0.625).
+        // - from the primary curve's torque cap, reached by such a branch
+        //   before zero twist (G9): eqs 1-3 took theta_m < 0 there too, and
+        //   on a column curve cycles between the cap and the branch below it
+        //   returned 19.4 each (one of 2,036 closed cycles on random curves
+        //   with the thesis' coefficients).
         let retrace = st.kind == Kind::Chord && !levels[from.index()].counts(x, theta_c, band);
-        let back = retrace || (st.kind == Kind::Rule && !(x > S::ZERO));
+        let back = retrace
+            || match st.kind {
+                Kind::Rule => !(x > S::ZERO),
+                Kind::Envelope => current.branch.capped_before_zero_twist(x),
+                _ => false,
+            };
         let branch = if t > S::ZERO && !back {
             // Unloading: rules 2-4 from this point. T_m is the torque of the
             // path at theta_m (G4); past a chord's target the path is the
@@ -337,11 +347,18 @@ impl<S: Scalar, const N: usize, const M: usize> Phm<S, N, M> {
             // to where the branch followed began: along a rule branch's
             // concave majorant, or the way a chord (or ray) came.
             let from = [signed(dir, st.twist), signed(dir, st.torque)];
-            let (path, bound) = (&current.branch, self.bound(dir));
-            if st.kind == Kind::Rule {
-                Branch::back(dir, from, path, st.seg, bound)
+            let bound = self.bound(dir);
+            let (path, seg) = if st.kind == Kind::Envelope {
+                // The branch up to the cap, then along the cap.
+                let path = current.branch.up_to_contact(self.bound(d));
+                (path, path.n - 1)
             } else {
-                Branch::retrace(dir, from, path, st.seg, bound)
+                (current.branch, st.seg)
+            };
+            if path.kind == Kind::Rule {
+                Branch::back(dir, from, &path, seg, bound)
+            } else {
+                Branch::retrace(dir, from, &path, seg, bound)
             }
         };
         st.kind = branch.kind;
@@ -370,13 +387,21 @@ impl<S: Scalar, const N: usize, const M: usize> Phm<S, N, M> {
     }
 
     /// The branch met the primary curve (rule 6): follow it from here on;
-    /// nothing remembered can be returned to any more.
+    /// nothing remembered can be returned to any more, unless it met the
+    /// torque cap before zero twist (G9): a reversal there still goes back
+    /// to where the branch began, so the memory stays until the twist
+    /// crosses zero ([`walk`](Self::walk)).
     #[cold]
     #[inline(never)]
     fn reach_envelope(&mut self, st: &mut State<S>, pending: &mut Pending, x: S) {
         st.kind = Kind::Envelope;
         st.seg = self.bound(st.dir).locate(x) as u8;
-        pending.clear();
+        if !self.slots[st.slot as usize]
+            .branch
+            .capped_before_zero_twist(x)
+        {
+            pending.clear();
+        }
         self.crack(st, if st.dir > S::ZERO { 0 } else { 1 });
     }
 
@@ -431,12 +456,18 @@ impl<S: Scalar, const N: usize, const M: usize> Phm<S, N, M> {
             // the remembered branch resumes. (A step across both went
             // straight to the primary curve: one step from 4 to 7 after 8, 2,
             // 5, 4 on the test curve gave a torque of 20, small steps 16.67.)
-            // (A chord's last vertex is its target.)
-            let on_ray = st.kind == Kind::Chord && b.contact > b.last()[0];
+            // (A chord's last vertex is its target; one that meets the
+            // primary curve exactly there hands over first, and the branch
+            // resumed follows the curve.)
+            let on_ray = st.kind == Kind::Chord && !(b.contact < b.last()[0]);
             if st.kind != Kind::Envelope && !on_ray && !(x < b.contact) {
                 self.reach_envelope(st, pending, x);
             }
             if st.kind == Kind::Envelope {
+                if x > S::ZERO && pending.keep + pending.push as usize != 0 {
+                    // Past zero twist on the cap (G9): nothing to go back to.
+                    pending.clear();
+                }
                 let (y, k) = self.bound(dir).follow(&mut st.seg, x);
                 st.torque = signed(dir, y);
                 st.tangent = k;
