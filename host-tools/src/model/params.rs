@@ -17,7 +17,7 @@ use super::{Extras, ModelSpec};
 use crate::data::json_place::JsonFile;
 use crate::data::{Quantity, Unit};
 use anyhow::{anyhow, bail, Context, Result};
-use hysteresis::bwbn::{BwbnParams, ENERGY_LIMIT};
+use hysteresis::bwbn::{BwbnParams, EffectSet, ENERGY_LIMIT};
 use serde_json::{Map, Value};
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -199,10 +199,18 @@ impl ParamFile {
     /// not belong to it. `dynamic` allows `m` and `xi`.
     pub fn build(&self, spec: ModelSpec, dynamic: bool) -> Result<(BwbnParams<f64>, Extras)> {
         let all = spec.params();
-        let known: Vec<&str> = all.iter().map(|s| s.name).chain([ENERGY_LIMIT]).collect();
+        let mut known: Vec<&str> = all.iter().map(|s| s.name).collect();
+        // The list of a model no effect of which reads the energy named
+        // `energy_limit`, which it then refused (found by review).
+        let reads_energy =
+            spec.custom != 0 || spec.effects.iter().any(|k| EffectSet::BWBN.contains(k));
+        if reads_energy {
+            known.push(ENERGY_LIMIT);
+        }
         for name in self.values.keys() {
-            let ok =
-                known.contains(&name.as_str()) || (dynamic && DYNAMIC.contains(&name.as_str()));
+            let ok = known.contains(&name.as_str())
+                || name == ENERGY_LIMIT
+                || (dynamic && DYNAMIC.contains(&name.as_str()));
             if !ok {
                 let hint = if DYNAMIC.contains(&name.as_str()) {
                     " (it belongs to force-driven dynamics)".to_string()
@@ -330,9 +338,17 @@ mod tests {
         assert!(msg("{\"k0\": 6,\n \"alpha\": }").starts_with("p.json:2:"));
         let m = msg(r#"{"k0": 6, "alpha": 0.2, "n": 1.2, "beta": 2, "gamma": -1, "zeta0": 0.5}"#);
         assert!(
-            m.contains("\"zeta0\" is not a parameter of model bw"),
+            m.ends_with(
+                "\"zeta0\" is not a parameter of model bw; model bw has k0, alpha, n, beta, gamma"
+            ),
             "{m}"
         );
+        // A model with an effect that reads the energy lists its limit.
+        let m = parse(r#"{"k0": 6, "alpha": 0.2, "n": 1.2, "beta": 2, "gamma": -1, "nu": 1}"#)
+            .and_then(|f| f.build(ModelSpec::parse("bw+strength-degradation")?, false))
+            .unwrap_err()
+            .to_string();
+        assert!(m.ends_with(", energy_limit"), "{m}");
         let m = msg(r#"{"k0": 6, "alpha": 1.2, "n": 1.2, "beta": 2, "gamma": -1}"#);
         assert_eq!(m, "p.json:1:20: alpha must lie in [0, 1]");
         let m = msg(r#"{"k0": 6, "alpha": 0.2, "n": 1.2, "beta": 2}"#);
