@@ -202,6 +202,16 @@ fn fe_backbone_feeds_the_phm_and_the_run_writes_section_rebar_and_damage() {
     assert!((yield_twist - first[tw]).abs() < 1e-9 * yield_twist);
     let peak_twist = summary["peak_twist"].as_f64().unwrap();
     assert!((peak_twist - rows[at_peak][tw]).abs() < 1e-9 * peak_twist);
+    // And as a plot, with each set's yield strain (Table 1.1: 328 and 354 MPa).
+    let svg = std::fs::read_to_string(out.join("rebar_strains.svg")).unwrap();
+    for text in [
+        "hoops",
+        "longitudinal bars",
+        "hoop yield 0.00164",
+        "longitudinal yield 0.00177",
+    ] {
+        assert!(svg.contains(text), "no '{text}' in rebar_strains.svg");
+    }
     for name in ["max_longitudinal_strain", "max_transverse_strain"] {
         let j = column(&h, name);
         assert!(rows.iter().all(|r| r[j].is_finite()), "{name}");

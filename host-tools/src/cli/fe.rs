@@ -23,7 +23,8 @@ pub struct FeArgs {
     /// Specimen file (TOML), e.g. `specimens/tp-91.toml`.
     pub specimen: PathBuf,
     /// Directory for `torque_twist.csv`, `torque_twist.svg`, `rebar_strains.csv`,
-    /// `section_shear.csv`, `section_shear.svg` and VTK files.
+    /// `rebar_strains.svg`, `section_shear.csv`, `section_shear.svg` and VTK
+    /// files.
     #[arg(long)]
     pub out: Option<PathBuf>,
     /// Write the PHM primary curve idealised from the computed torque-twist

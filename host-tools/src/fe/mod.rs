@@ -25,6 +25,7 @@
 // reads like the equations; iterators would hide that.
 #![allow(clippy::neg_cmp_op_on_partial_ord, clippy::needless_range_loop)]
 pub mod backbone;
+pub mod bar_yield;
 #[cfg(test)]
 mod checks;
 pub mod concrete;

@@ -2,6 +2,7 @@
 //! sample and write output, judge the run, summarise.
 
 use super::backbone;
+use super::bar_yield;
 use super::explicit::Solver;
 use super::material::{BarMaterial, SolidMaterial};
 use super::mesh::Quality;
@@ -190,6 +191,7 @@ fn fallen_below_peak(samples: &[Sample], fraction: f64) -> bool {
 const TORQUE_TWIST_CSV: &str = "torque_twist.csv";
 const TORQUE_TWIST_SVG: &str = "torque_twist.svg";
 const REBAR_STRAINS_CSV: &str = "rebar_strains.csv";
+const REBAR_STRAINS_SVG: &str = "rebar_strains.svg";
 const SECTION_SHEAR_CSV: &str = "section_shear.csv";
 const SECTION_SHEAR_SVG: &str = "section_shear.svg";
 
@@ -206,6 +208,7 @@ pub fn writes_into_out(name: &str) -> bool {
         TORQUE_TWIST_CSV,
         TORQUE_TWIST_SVG,
         REBAR_STRAINS_CSV,
+        REBAR_STRAINS_SVG,
         SECTION_SHEAR_CSV,
         SECTION_SHEAR_SVG,
     ]
@@ -430,8 +433,19 @@ pub fn run<M: SolidMaterial, B: BarMaterial>(
             .position(|b| b[set].is_some_and(|e| e >= eps_y))
             .map(|i| &samples[i])
     };
-    let longitudinal_yield = first_yield(0, yield_strain(spec.longitudinal.yield_mpa));
-    let transverse_yield = first_yield(1, yield_strain(spec.transverse.yield_mpa));
+    let eps_y = [
+        yield_strain(spec.longitudinal.yield_mpa),
+        yield_strain(spec.transverse.yield_mpa),
+    ];
+    let longitudinal_yield = first_yield(0, eps_y[0]);
+    let transverse_yield = first_yield(1, eps_y[1]);
+    if let Some((dir, _, _)) = &files {
+        let svg = dir.join(REBAR_STRAINS_SVG);
+        let title = format!("{}: torque against the largest bar strains", spec.name);
+        let fig = bar_yield::figure(&title, samples, &rec.bar_strains, eps_y)?;
+        std::fs::write(&svg, fig.to_svg()).with_context(|| format!("writing {}", svg.display()))?;
+        outputs.push(svg);
+    }
     let failures = verdict.failures();
     let cracking_torque = cracking.map(|(_, i)| samples[i].torque.abs() / 1e3);
     let table_2_1 = spec
