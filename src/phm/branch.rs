@@ -419,11 +419,9 @@ impl<S: Scalar> Branch<S> {
                 let mut best = slope(to);
                 let mut pick = None;
                 for k in first..next {
-                    if let Some(p) = ahead(k) {
-                        if slope(p) > best {
-                            best = slope(p);
-                            pick = Some(k);
-                        }
+                    if let Some(s) = ahead(k).map(slope).filter(|&s| s > best) {
+                        best = s;
+                        pick = Some(k);
                     }
                 }
                 pick
