@@ -34,6 +34,14 @@ pub enum JsonLayout {
 }
 
 impl JsonLayout {
+    /// Every layout, in the order they are recognised and named.
+    pub const ALL: [JsonLayout; 4] = [
+        JsonLayout::PeerSpd,
+        JsonLayout::FastenerConnection,
+        JsonLayout::SimCenterBrace,
+        JsonLayout::FrictionDamper,
+    ];
+
     /// Recognises the layout of a document by its keys: `None` when no
     /// layout or more than one matches (see [`matching`](Self::matching)).
     pub fn detect(root: &Value) -> Option<JsonLayout> {
@@ -50,32 +58,24 @@ impl JsonLayout {
         let Some(obj) = root.as_object() else {
             return Vec::new();
         };
+        Self::ALL.into_iter().filter(|l| l.found_in(obj)).collect()
+    }
+
+    /// Whether the document `obj` has the keys of this layout.
+    fn found_in(self, obj: &Map<String, Value>) -> bool {
         let has = |o: Option<&Value>, keys: &[&str]| {
             o.and_then(Value::as_object)
                 .is_some_and(|m| keys.iter().all(|k| m.contains_key(*k)))
         };
-        [
-            (
-                JsonLayout::PeerSpd,
-                has(obj.get("data"), &["disp", "force"]),
-            ),
-            (
-                JsonLayout::FastenerConnection,
-                has(obj.get("test"), &["displacement", "force"]),
-            ),
-            (
-                JsonLayout::SimCenterBrace,
-                has(obj.get("test"), &["axialDef", "axialForce"]),
-            ),
-            (
-                JsonLayout::FrictionDamper,
+        match self {
+            JsonLayout::PeerSpd => has(obj.get("data"), &["disp", "force"]),
+            JsonLayout::FastenerConnection => has(obj.get("test"), &["displacement", "force"]),
+            JsonLayout::SimCenterBrace => has(obj.get("test"), &["axialDef", "axialForce"]),
+            JsonLayout::FrictionDamper => {
                 obj.get("data").is_some_and(Value::is_array)
-                    && obj.contains_key("displacement units"),
-            ),
-        ]
-        .into_iter()
-        .filter_map(|(layout, found)| found.then_some(layout))
-        .collect()
+                    && obj.contains_key("displacement units")
+            }
+        }
     }
 
     /// The keys that identify the layout, as the messages name them.
@@ -347,7 +347,7 @@ pub(crate) fn parse(file: &Path, text: &str, options: &ReadOptions) -> Result<Re
             ),
         ));
     }
-    let (Some(layout), Some(obj)) = (JsonLayout::detect(&root), root.as_object()) else {
+    let (Some(&layout), Some(obj)) = (layouts.first(), root.as_object()) else {
         let keys = root
             .as_object()
             .map(|o| {
@@ -357,11 +357,12 @@ pub(crate) fn parse(file: &Path, text: &str, options: &ReadOptions) -> Result<Re
                     .join(", ")
             })
             .unwrap_or_else(|| "no object".into());
+        let [rest @ .., last] = JsonLayout::ALL.map(JsonLayout::keys);
         return Err(DataError::file(
             file,
             format!(
-                "expected a known JSON layout (data.disp/data.force, test.displacement/test.force, \
-                 test.axialDef/test.axialForce, or data rows with 'displacement units'), found keys {keys}"
+                "expected a known JSON layout ({}, or {last}), found keys {keys}",
+                rest.join(", ")
             ),
         ));
     };

@@ -3,7 +3,7 @@
 //! set's yield strain `f_y / E_s` as a line, so that which set yields first,
 //! and at what torque, is seen at a glance.
 
-use super::output::Sample;
+use super::output::{self, Sample};
 use crate::report::{Axis, Error, Figure, Panel, Series};
 
 /// The figure: torque (kN m) against the largest axial strain of the
@@ -19,8 +19,8 @@ pub fn figure(
     strains: &[Vec<Option<f64>>],
     eps_y: [f64; 2],
 ) -> Result<Figure, Error> {
+    let (end, peak) = cut(samples);
     let torque: Vec<f64> = samples.iter().map(|s| s.torque.abs() / 1e3).collect();
-    let (end, peak) = cut(&torque);
     let mut panel = Panel::new(
         Axis::linear("largest bar strain", "-").include_zero(),
         Axis::linear("torque", "kN m").include_zero(),
@@ -58,7 +58,7 @@ pub fn figure(
     if end < torque.len() {
         panel.note(&format!(
             "up to the torque falling below 80 % of its peak ({:.1} kN m)",
-            peak
+            peak / 1e3
         ));
     }
     let mut fig = Figure::new(720.0, 460.0);
@@ -67,16 +67,14 @@ pub fn figure(
 }
 
 /// The number of samples drawn (those before the first after the peak
-/// below 80 % of it) and the peak torque.
-fn cut(torque: &[f64]) -> (usize, f64) {
-    let (peak_at, peak) = torque
-        .iter()
-        .copied()
-        .enumerate()
-        .fold((0, 0.0), |m, (i, t)| if t > m.1 { (i, t) } else { m });
-    let end = (peak_at..torque.len())
-        .find(|&i| torque[i] < 0.8 * peak)
-        .unwrap_or(torque.len());
+/// below 80 % of it) and the peak torque, N m.
+fn cut(samples: &[Sample]) -> (usize, f64) {
+    let Some((peak_at, peak)) = output::largest_torque(samples) else {
+        return (0, 0.0);
+    };
+    let end = (peak_at..samples.len())
+        .find(|&i| samples[i].torque.abs() < 0.8 * peak)
+        .unwrap_or(samples.len());
     (end, peak)
 }
 
@@ -132,11 +130,11 @@ mod tests {
                 _ => 60.0 - 5.0 * (i - 10) as f64,
             })
             .collect();
-        assert_eq!(cut(&torque), (13, 60.0));
-        assert_eq!(cut(&torque[..12]), (12, 60.0));
         let samples: Vec<Sample> = (0..=16)
             .map(|i| Sample::on_curve(0.001 * i as f64, 1e3 * torque[i]))
             .collect();
+        assert_eq!(cut(&samples), (13, 60e3));
+        assert_eq!(cut(&samples[..12]), (12, 60e3));
         let strains: Vec<Vec<Option<f64>>> = (0..=16)
             .map(|i| vec![Some(1e-4 * i as f64), Some(1e-4 * i as f64)])
             .collect();

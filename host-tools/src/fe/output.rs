@@ -392,6 +392,14 @@ pub fn cracking(samples: &[Sample]) -> Option<(f64, usize)> {
         .map(|i| (k0, i))
 }
 
+/// The index of the sample with the largest torque magnitude (the first if
+/// several) and that magnitude, N m; `None` without samples.
+pub fn largest_torque(samples: &[Sample]) -> Option<(usize, f64)> {
+    let max = samples.iter().fold(0.0f64, |a, x| a.max(x.torque.abs()));
+    let at = samples.iter().position(|x| x.torque.abs() == max)?;
+    Some((at, max))
+}
+
 /// The `[twist, torque]` pairs of the samples.
 pub fn torque_twist(samples: &[Sample]) -> Vec<[f64; 2]> {
     samples.iter().map(|s| [s.twist, s.torque]).collect()

@@ -13,8 +13,9 @@ use super::rebar::embed;
 use super::section::{Cut, Profile, Stage, StageSummary};
 use super::specimen::Specimen;
 use super::torque_twist::{self, Comparison, Marks};
+use crate::report::Figure;
 use anyhow::Context;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Instant;
 
@@ -169,19 +170,10 @@ pub struct PeakChecks {
 /// condition keeps the noise of the start of a run, when the largest torque
 /// is still tiny, from ending it; a fraction of 0 never holds.
 fn fallen_below_peak(samples: &[Sample], fraction: f64) -> bool {
-    let Some(last) = samples.last() else {
+    let (Some(last), Some((peak_at, peak))) = (samples.last(), output::largest_torque(samples))
+    else {
         return false;
     };
-    let (peak_at, peak) = samples
-        .iter()
-        .enumerate()
-        .fold((0, 0.0f64), |(i, m), (j, x)| {
-            if x.torque.abs() > m {
-                (j, x.torque.abs())
-            } else {
-                (i, m)
-            }
-        });
     last.torque.abs() < fraction * peak
         && output::cracking(samples).is_some_and(|(_, c)| c < peak_at)
 }
@@ -214,6 +206,13 @@ pub fn writes_into_out(name: &str) -> bool {
     ]
     .contains(&name)
         || output::VTK_PREFIXES.iter().any(|p| snapshot(p))
+}
+
+/// Writes `fig` as `name` in the run's folder `dir`; returns its path.
+fn write_svg(dir: &Path, name: &str, fig: &Figure) -> anyhow::Result<PathBuf> {
+    let svg = dir.join(name);
+    std::fs::write(&svg, fig.to_svg()).with_context(|| format!("writing {}", svg.display()))?;
+    Ok(svg)
 }
 
 /// The bar sets whose largest strains `rebar_strains.csv` reports, in its
@@ -384,8 +383,9 @@ pub fn run<M: SolidMaterial, B: BarMaterial>(
     let samples = &rec.samples;
     let verdict = trace.verdict();
     let cracking = output::cracking(samples);
-    let max_torque = samples.iter().fold(0.0f64, |a, x| a.max(x.torque.abs()));
-    let peak_at = samples.iter().position(|x| x.torque.abs() == max_torque);
+    let largest = output::largest_torque(samples);
+    let max_torque = largest.map_or(0.0, |(_, t)| t);
+    let peak_at = largest.map(|(i, _)| i);
     let passed_peak = peak_at.is_some_and(|i| {
         samples[i + 1..]
             .iter()
@@ -419,12 +419,13 @@ pub fn run<M: SolidMaterial, B: BarMaterial>(
         let csv = dir.join(SECTION_SHEAR_CSV);
         cut.write_csv(&stages, &csv)
             .with_context(|| format!("writing {}", csv.display()))?;
-        let svg = dir.join(SECTION_SHEAR_SVG);
-        let title = format!("{}: shear stress at z = {:.3} m", spec.name, cut.z);
-        std::fs::write(&svg, cut.figure(&title, &stages)?.to_svg())
-            .with_context(|| format!("writing {}", svg.display()))?;
         outputs.push(csv);
-        outputs.push(svg);
+        let title = format!("{}: shear stress at z = {:.3} m", spec.name, cut.z);
+        outputs.push(write_svg(
+            dir,
+            SECTION_SHEAR_SVG,
+            &cut.figure(&title, &stages)?,
+        )?);
     }
     let yield_strain = |mpa: f64| mpa / spec.steel.elastic_modulus_mpa;
     let first_yield = |set: usize, eps_y: f64| {
@@ -440,11 +441,9 @@ pub fn run<M: SolidMaterial, B: BarMaterial>(
     let longitudinal_yield = first_yield(0, eps_y[0]);
     let transverse_yield = first_yield(1, eps_y[1]);
     if let Some((dir, _, _)) = &files {
-        let svg = dir.join(REBAR_STRAINS_SVG);
         let title = format!("{}: torque against the largest bar strains", spec.name);
         let fig = bar_yield::figure(&title, samples, &rec.bar_strains, eps_y)?;
-        std::fs::write(&svg, fig.to_svg()).with_context(|| format!("writing {}", svg.display()))?;
-        outputs.push(svg);
+        outputs.push(write_svg(dir, REBAR_STRAINS_SVG, &fig)?);
     }
     let failures = verdict.failures();
     let cracking_torque = cracking.map(|(_, i)| samples[i].torque.abs() / 1e3);
@@ -476,10 +475,8 @@ pub fn run<M: SolidMaterial, B: BarMaterial>(
             "{}: torque against twist at {} mm elements",
             spec.name, spec.analysis.element_size_mm
         );
-        let svg = dir.join(TORQUE_TWIST_SVG);
         let fig = torque_twist::figure(&title, samples, marks, spec.reference.table_2_1.as_ref())?;
-        std::fs::write(&svg, fig.to_svg()).with_context(|| format!("writing {}", svg.display()))?;
-        outputs.push(svg);
+        outputs.push(write_svg(dir, TORQUE_TWIST_SVG, &fig)?);
     }
     let m = &s.model;
     Ok(Summary {

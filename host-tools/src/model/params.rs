@@ -17,7 +17,7 @@ use super::{Extras, ModelSpec};
 use crate::data::json_place::JsonFile;
 use crate::data::{Quantity, Unit};
 use anyhow::{anyhow, bail, Context, Result};
-use hysteresis::bwbn::{BwbnParams, EffectSet, ENERGY_LIMIT};
+use hysteresis::bwbn::{BwbnParams, ENERGY_LIMIT};
 use serde_json::{Map, Value};
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -202,9 +202,7 @@ impl ParamFile {
         let mut known: Vec<&str> = all.iter().map(|s| s.name).collect();
         // The list of a model no effect of which reads the energy named
         // `energy_limit`, which it then refused (found by review).
-        let reads_energy =
-            spec.custom != 0 || spec.effects.iter().any(|k| EffectSet::BWBN.contains(k));
-        if reads_energy {
+        if spec.reads_energy() {
             known.push(ENERGY_LIMIT);
         }
         for name in self.values.keys() {
@@ -227,10 +225,7 @@ impl ParamFile {
             .build(|n| self.values.get(n).copied())
             .map_err(|e| anyhow!("{}: {e}", self.at(&[e.field])))?;
         // A limit no effect reads did nothing, in silence.
-        if self.values.contains_key(ENERGY_LIMIT)
-            && spec.custom == 0
-            && !built.0.effects().reads_energy(&())
-        {
+        if self.values.contains_key(ENERGY_LIMIT) && !spec.reads_energy() {
             bail!(
                 "{}: \"energy_limit\" bounds the energy that degradation and pinching read, and model {spec} has neither: it would change nothing (remove it)",
                 self.at(&[ENERGY_LIMIT])

@@ -175,6 +175,13 @@ impl ModelSpec {
             .collect()
     }
 
+    /// Whether an effect of the model reads the hysteretic energy (the
+    /// thesis' four do; asymmetry does not; a registered effect may), so
+    /// that `energy_limit` means something for it.
+    pub fn reads_energy(&self) -> bool {
+        self.custom != 0 || EffectKind::THESIS.iter().any(|&k| self.effects.contains(k))
+    }
+
     /// Every parameter of the model: base, built-in effects, custom effects.
     pub fn params(&self) -> Vec<ParamSpec> {
         let mut v: Vec<ParamSpec> = specs(self.effects).copied().collect();
