@@ -39,12 +39,13 @@ fn fit_with_mass_then_simulate_the_fit() {
     assert_eq!(file["m"].as_f64(), Some(500.0));
     let nrmse = summary["nrmse"].as_f64().unwrap();
     assert!(nrmse < 1e-3, "nrmse {nrmse}");
-    // The default method, auto, screened its starts with the fixed-step model and says so.
+    // The default method, auto, screened its starts with the fixed-step model and says so (the
+    // best screened end was refined, the first start fitted directly).
     assert_eq!(summary["method"], "auto");
     let screening = &summary["screening"];
     assert_eq!(screening["method"], "rk4", "{summary}");
     assert_eq!(screening["starts"].as_u64(), Some(8));
-    assert_eq!(screening["refined"].as_u64(), Some(2));
+    assert_eq!(screening["refined"].as_u64(), Some(1));
     assert!(screening["lane_runs"].as_u64().unwrap() > 0);
 
     // The fit file selects the force drive and the mass by itself.
@@ -270,4 +271,48 @@ fn polish_refines_the_nsga2_choice_and_reports_both_errors() {
         "fit", RECORD, "--model", "bw", "--mass", "500", "--method", "lsq", "--polish",
     ]));
     assert!(msg.contains("use it with --method nsga2"), "{msg}");
+}
+
+/// Forgione's noisy estimation record of the Bouc-Wen benchmark, fitted as the docs run it
+/// (`auto`, force linear between samples). Least squares reaches the truth from the default
+/// start only: seven random starts end in minima at NRMSE 0.29-0.64, and so did every end
+/// screened with the fixed-step model, the default start's included, so `auto` once returned
+/// NRMSE 0.316 with `n` and `alpha` at the ends of their ranges. The true parameters (the
+/// benchmark's PROVENANCE, in this crate's units) must come back to 3%; the damping is left
+/// out, 13% low with linear forcing (README, "cubic").
+#[test]
+fn auto_finds_the_benchmark_oscillator() {
+    let record = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../shared/data/boucwen-benchmark/csv/train_multisine_forgione.csv"
+    );
+    let out = ok(hyst(&[
+        "fit",
+        record,
+        "--model",
+        "bw",
+        "--mass",
+        "2",
+        "--sample-rate",
+        "750",
+        "--json",
+    ]));
+    let summary: Value = serde_json::from_slice(&out.stdout).unwrap();
+    // The added output noise alone is 1.2% of rms(y).
+    let nrmse = summary["nrmse"].as_f64().unwrap();
+    assert!(nrmse < 0.015, "nrmse {nrmse}");
+    let params = &summary["params"];
+    for (name, truth) in [
+        ("k0", 0.1),
+        ("alpha", 0.5),
+        ("n", 1.0),
+        ("beta", 0.8),
+        ("gamma", -1.1),
+    ] {
+        let got = params[name].as_f64().unwrap();
+        assert!(
+            ((got - truth) / truth).abs() < 0.03,
+            "{name}: {got} vs {truth}"
+        );
+    }
 }

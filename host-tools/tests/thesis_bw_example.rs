@@ -131,8 +131,8 @@ fn nsga2_polished_by_least_squares_reaches_the_truth() {
 }
 
 /// `auto` on a force-driven plain Bouc-Wen record screens its eight starts with the fixed-step
-/// lane model and refines the best two with the core: it reaches the truth as least squares
-/// does from 50-150% starts, and says how it screened.
+/// lane model and refines the best with the core, next to the core's fit from the first start:
+/// it reaches the truth as least squares does from 50-150% starts, and says how it screened.
 #[test]
 fn auto_screens_its_starts_and_reaches_the_truth() {
     let p = problem();
