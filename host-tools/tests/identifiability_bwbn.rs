@@ -75,7 +75,10 @@ fn a_bwbn_fit_names_every_parameter_it_got_wrong() {
             }
         }
         assert!(!far.is_empty(), "{case}: every parameter near the truth");
-        eprintln!("{case}: NRMSE {:.4}, off by more than half: {far:?}", fit.scores.nrmse);
+        eprintln!(
+            "{case}: NRMSE {:.4}, off by more than half: {far:?}",
+            fit.scores.nrmse
+        );
         // (n is determined in all four, and so are zeta0, p, q and lambda
         // where pinching is hidden.)
         assert!(determined > 0, "{case}: nothing determined");

@@ -211,6 +211,13 @@ fn forced(
     let force = record
         .force()
         .ok_or_else(|| anyhow!("{src}: no force column to drive the oscillator"))?;
+    crate::fit::experiment::check_mass(
+        &src.to_string(),
+        mass,
+        force.iter().fold(0.0f64, |a, x| a.max(x.abs())),
+        (params.base().k0, "initial stiffness k0"),
+        dt,
+    )?;
     let measured = record.displacement();
     let exp = crate::fit::experiment::Experiment {
         input: force.to_vec(),
