@@ -15,6 +15,7 @@ use crate::model::{EffectRef, Extras, ModelSpec};
 use anyhow::{bail, Result};
 use hysteresis::bwbn::{BwbnParams, EffectKind, ParamError, ParamSpec, Unit};
 use hysteresis::Scalar;
+use nalgebra::DMatrix;
 use std::collections::BTreeMap;
 
 /// Reference scales of a record.
@@ -397,6 +398,27 @@ impl Parametrization {
             out.insert(f.spec.name, v * self.scales.factor(f.spec.unit, n));
         }
         out
+    }
+
+    /// The free parameters' physical values at `x`, in the order of `x`, and
+    /// the Jacobian of the map from `x` to them: each one's factor on the
+    /// diagonal, and for those in displacement^-n (beta, gamma) a second
+    /// entry in the column of a free `n`, `-ln(D) p`.
+    pub fn physical_jacobian(&self, x: &[f64]) -> (Vec<f64>, DMatrix<f64>) {
+        let physical = self.physical(x);
+        let free_n = self.free.iter().position(|f| f.spec.name == "n");
+        let n = physical.get("n").copied().unwrap_or(1.0);
+        let mut jacobian = DMatrix::zeros(x.len(), x.len());
+        let mut values = Vec::with_capacity(x.len());
+        for (i, f) in self.free.iter().enumerate() {
+            let value = physical[f.spec.name];
+            jacobian[(i, i)] = self.scales.factor::<f64>(f.spec.unit, n);
+            if let (Unit::DisplacementPowMinusN, Some(j)) = (f.spec.unit, free_n) {
+                jacobian[(i, j)] -= self.scales.disp.ln() * value;
+            }
+            values.push(value);
+        }
+        (values, jacobian)
     }
 
     /// The normalised vector of physical values `values` (missing free

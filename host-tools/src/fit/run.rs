@@ -474,8 +474,15 @@ pub fn finish(
         .scores(&sol.x)
         .ok_or_else(|| anyhow!("the fitted parameters cannot be simulated"))?;
     let names = problem.par.names();
-    let identifiability =
-        identifiability::analyse(&sol.jacobian, &names, &sol.x, sol.cost, sol.residuals.len());
+    let (values, to_physical) = problem.par.physical_jacobian(&sol.x);
+    let identifiability = identifiability::analyse_physical(
+        &sol.jacobian,
+        &names,
+        &values,
+        &to_physical,
+        sol.cost,
+        sol.residuals.len(),
+    );
     Ok(Outcome {
         method: method.to_string(),
         values: problem.par.physical(&sol.x),
