@@ -56,6 +56,14 @@ pub struct Identifiability {
     /// Parameters the data cannot determine: relative std above 50% or not
     /// finite.
     pub undetermined: Vec<String>,
+    /// Standard error of each value, in its units (infinite where the
+    /// Jacobian does not resolve it).
+    pub std: Vec<(String, f64)>,
+    /// Values at exactly zero (the end of a range, or an effect switched
+    /// off): their relative error is undefined, so they are undetermined by
+    /// the rule, and [`std`](Self::std) says how far from zero the data
+    /// allow them.
+    pub at_zero: Vec<String>,
 }
 
 impl Identifiability {
@@ -83,7 +91,8 @@ impl Identifiability {
             let unexplained: Vec<String> = self
                 .relative_std
                 .iter()
-                .filter(|(n, r)| {
+                .zip(&self.std)
+                .filter(|((n, r), _)| {
                     self.undetermined.contains(n)
                         && r.is_finite()
                         && !self
@@ -91,7 +100,10 @@ impl Identifiability {
                             .iter()
                             .any(|w| w.parameters.iter().any(|p| &p.0 == n))
                 })
-                .map(|(n, r)| format!("{n} {:.0} %", 100.0 * r))
+                .map(|((n, r), (_, sd))| match self.at_zero.contains(n) {
+                    true => format!("{n} = 0 +- {sd:.2e}"),
+                    false => format!("{n} {:.0} %", 100.0 * r),
+                })
                 .collect();
             if !unexplained.is_empty() {
                 s.push_str(&format!(
@@ -282,6 +294,17 @@ pub fn analyse_physical(
         }
     }
     let relative = |r: f64, value: f64| r / value.abs().max(1e-12);
+    let std: Vec<(String, f64)> = names
+        .iter()
+        .zip(&var)
+        .map(|(n, v)| (n.to_string(), (v * s2).sqrt()))
+        .collect();
+    let at_zero: Vec<String> = names
+        .iter()
+        .zip(values)
+        .filter(|(_, v)| **v == 0.0)
+        .map(|(n, _)| n.to_string())
+        .collect();
     let relative_std: Vec<(String, f64)> = names
         .iter()
         .zip(&var)
@@ -316,7 +339,11 @@ pub fn analyse_physical(
             // The combination: its major parts. A small component moving a
             // parameter near zero by a large fraction belongs to some other
             // direction's story (that parameter's own standard error).
+            // A value at zero moves by an undefined fraction of itself: its
+            // standard error speaks for it (a direction 0.46 as visible as
+            // the best was listed for moving zeros by 2e10 %).
             .filter(|(_, c, m)| *m > 0.5 && c.abs() > 0.3)
+            .filter(|(n, _, _)| !at_zero.contains(n))
             .collect();
         loose.sort_by(|a, b| b.1.abs().total_cmp(&a.1.abs()));
         if !loose.is_empty() {
@@ -345,6 +372,8 @@ pub fn analyse_physical(
         correlated,
         weak,
         undetermined,
+        std,
+        at_zero,
     }
 }
 
@@ -456,6 +485,24 @@ mod tests {
         let normalised = analyse(&jac, &["n", "b"], &[n, xb], cost, obs);
         // 2.5 % against 0.84 % here.
         assert!(id.relative_std[1].1 > 2.0 * normalised.relative_std[1].1);
+    }
+
+    /// A value at exactly zero (an effect off, at the end of its range) is
+    /// undetermined by the relative rule, but the summary gives its absolute
+    /// standard error, not a fraction of zero, and no direction is listed for
+    /// moving it (one 0.46 as visible as the best was, "moving" zeros by
+    /// 2e10 %: found by review).
+    #[test]
+    fn a_value_at_zero_is_reported_with_its_absolute_error() {
+        let jac = DMatrix::from_fn(20, 2, |i, j| if j == 0 { 1.0 } else { i as f64 / 20.0 });
+        let id = analyse(&jac, &["offset", "rate"], &[2.0, 0.0], 20.0 * 1e-4, 20);
+        assert_eq!(id.undetermined, ["rate"]);
+        assert_eq!(id.at_zero, ["rate"]);
+        assert!(id.weak.is_empty(), "{:?}", id.weak);
+        let sd = id.std[1].1;
+        assert!(sd > 0.0 && sd < 0.1, "{sd}");
+        let s = id.summary();
+        assert!(s.contains(&format!("rate = 0 +- {sd:.2e}")), "{s}");
     }
 
     /// A parameter the output does not depend on at all (alpha fixed at 1 leaves the
