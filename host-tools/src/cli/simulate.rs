@@ -216,22 +216,12 @@ fn forced(
     // fit's own file is not refused (with the file's k0, 6 against a secant
     // of 2.3, a mass `fit` took was refused here: found by review); by k0
     // where the record has no displacement.
-    let peak_f = force.iter().fold(0.0f64, |a, x| a.max(x.abs()));
-    let stiffness = match measured.map(|u| u.iter().fold(0.0f64, |a, x| a.max(x.abs()))) {
-        Some(peak_u) if peak_u > 0.0 => (
-            peak_f / peak_u,
-            "secant stiffness, peak force over peak displacement".to_string(),
-        ),
-        _ => (
-            params.base().k0,
-            format!("initial stiffness k0 ({})", file.at(&["k0"])),
-        ),
-    };
     crate::fit::experiment::check_mass(
-        &src.to_string(),
+        &src,
         mass,
-        peak_f,
-        (stiffness.0, &stiffness.1),
+        force,
+        measured,
+        Some((params.base().k0, &file.at(&["k0"]))),
         dt,
     )?;
     let exp = crate::fit::experiment::Experiment {

@@ -235,21 +235,27 @@ struct Sample<S> {
 }
 
 /// Refuses a mass (kg) the mass-normalised oscillator cannot be simulated
-/// with on a record from `src` with peak force `peak_force` (kN), sampled
-/// every `dt` seconds: one whose peak force over mass is beyond `f64` (the
-/// mass was taken and the failure blamed on k0, found by review), or one
-/// that makes the oscillator turn more than [`MAX_RADIANS_A_SAMPLE`] in a
-/// sample interval with `stiffness` (kN/mm, with what it is in words): an
-/// explicit integrator follows it a few radians a sub-step, 1000 sub-steps a
-/// sample at most, so that is a unit slip (kN s^2/mm for kg turns it 1000x
-/// faster), not a record (`--mass 1e-300` failed as "model diverged").
+/// with on a record from `src` (applied `force` in kN, measured
+/// `displacement` in mm where there is one), sampled every `dt` seconds: one
+/// whose peak force over mass is beyond `f64` (the mass was taken and the
+/// failure blamed on k0, found by review), or one that makes the oscillator
+/// turn more than [`MAX_RADIANS_A_SAMPLE`] in a sample interval with the
+/// record's secant stiffness (peak force over peak displacement), or with
+/// `k0` (its value and where it was given) for a record without
+/// displacement: an explicit integrator follows it a few radians a sub-step,
+/// 1000 sub-steps a sample at most, so that is a unit slip (kN s^2/mm for kg
+/// turns it 1000x faster), not a record (`--mass 1e-300` failed as "model
+/// diverged").
 pub fn check_mass(
-    src: &str,
+    src: impl std::fmt::Display,
     mass: f64,
-    peak_force: f64,
-    stiffness: (f64, &str),
+    force: &[f64],
+    displacement: Option<&[f64]>,
+    k0: Option<(f64, &str)>,
     dt: f64,
 ) -> anyhow::Result<()> {
+    let peak = |x: &[f64]| x.iter().fold(0.0f64, |a, v| a.max(v.abs()));
+    let peak_force = peak(force);
     // kg = N s^2/m = 1e-6 kN s^2/mm
     let m = mass * 1e-6;
     if !(m.is_normal() && (peak_force / m).is_finite()) {
@@ -257,7 +263,17 @@ pub fn check_mass(
             "{src}: the mass of {mass:e} kg is too small for this record: its peak force over the mass ({peak_force:e} kN / {m:e} kN s^2/mm) is beyond the range of f64"
         );
     }
-    let (k, what) = stiffness;
+    let stiffness = match (displacement.map(peak), k0) {
+        (Some(peak_u), _) if peak_u > 0.0 => Some((
+            peak_force / peak_u,
+            "secant stiffness, peak force over peak displacement".to_string(),
+        )),
+        (_, Some((k, place))) => Some((k, format!("initial stiffness k0 ({place})"))),
+        _ => None,
+    };
+    let Some((k, what)) = stiffness else {
+        return Ok(());
+    };
     let radians = (k / m).sqrt() * dt;
     if k.is_finite() && (radians.is_nan() || radians > MAX_RADIANS_A_SAMPLE) {
         anyhow::bail!(
@@ -310,18 +326,7 @@ impl Experiment {
                     bail!("--mass must be a positive number of kg, got {mass}");
                 }
                 let dt = uniform_step(record)?;
-                let peak_u = u.iter().fold(0.0f64, |a, x| a.max(x.abs()));
-                let peak_f = f.iter().fold(0.0f64, |a, x| a.max(x.abs()));
-                check_mass(
-                    &format!("{src}"),
-                    mass,
-                    peak_f,
-                    (
-                        peak_f / peak_u,
-                        "secant stiffness, peak force over peak displacement",
-                    ),
-                    dt,
-                )?;
+                check_mass(&src, mass, f, Some(u), None, dt)?;
                 let m = mass * 1e-6;
                 Ok(Experiment {
                     input: f.to_vec(),
