@@ -7,10 +7,11 @@
 //! is more than half its value (or infinite: the output does not depend on
 //! it). A direction is reported as weak when one standard error along it
 //! moves one of its major parts (component above 0.3) by more than half its
-//! value, so every parameter named in a weak direction is also undetermined. How much less visible a direction
-//! is than the best one (its singular value ratio) does not decide this by
-//! itself: with noise-free data a direction 1e-4 times less visible can
-//! still be pinned to 1e-13, and the fit's own standard errors say so.
+//! value, so every parameter named in a weak direction is also undetermined.
+//! How much less visible a direction is than the best one (its singular value
+//! ratio) does not decide this by itself: with noise-free data a direction
+//! 1e-4 times less visible can still be pinned to 1e-13, and the fit's own
+//! standard errors say so.
 //!
 //! Known cases this reports: a 17-parameter BWBN fitted to one record reaches
 //! a tiny error with parameters far from the truth (many combinations give the
@@ -274,20 +275,16 @@ pub fn analyse_physical(
     let rank = sv.iter().filter(|&&s| seen(s, smax)).count();
     let s2 = residual_variance(cost, n_obs, p);
     let cov = normal_inverse(sv.as_slice(), &v_t, smax);
-    // How far value i moves along direction k per unit of it, and whether it
-    // takes part in an unresolved direction (its move against its own
-    // variable's, by the rule of `in_null`).
-    let along = |k: usize, i: usize| {
-        (0..p)
-            .map(|j| to_physical[(i, j)] * v_t[(k, j)])
-            .sum::<f64>()
-    };
-    let part_of_null = |k: usize, i: usize| in_null(along(k, i) / to_physical[(i, i)]);
+    // How far value i moves along direction k per unit of it (row i, column
+    // k), and whether it takes part in an unresolved direction (its move
+    // against its own variable's, by the rule of `in_null`).
+    let along = to_physical * v_t.transpose();
+    let part_of_null = |k: usize, i: usize| in_null(along[(i, k)] / to_physical[(i, i)]);
     let mut var = vec![0.0f64; p];
     for (k, &s) in sv.iter().enumerate() {
         for (i, v) in var.iter_mut().enumerate() {
             if seen(s, smax) {
-                *v += (along(k, i) / s).powi(2);
+                *v += (along[(i, k)] / s).powi(2);
             } else if part_of_null(k, i) {
                 *v = f64::INFINITY;
             }
@@ -324,11 +321,15 @@ pub fn analyse_physical(
     for (k, &s) in sv.iter().enumerate().rev() {
         // One standard error along direction k, sigma / s in normalised
         // units, moves value i by `along` times that.
+        // A value at zero moves by an undefined fraction of itself: its
+        // standard error speaks for it (a direction 0.46 as visible as the
+        // best was listed for moving zeros by 2e10 %).
         let mut loose: Vec<(String, f64, f64)> = (0..p)
+            .filter(|&i| values[i] != 0.0)
             .map(|i| {
                 let c = v_t[(k, i)];
                 let m = if seen(s, smax) {
-                    relative(along(k, i).abs() * s2.sqrt() / s, values[i])
+                    relative(along[(i, k)].abs() * s2.sqrt() / s, values[i])
                 } else if part_of_null(k, i) {
                     f64::INFINITY
                 } else {
@@ -339,11 +340,7 @@ pub fn analyse_physical(
             // The combination: its major parts. A small component moving a
             // parameter near zero by a large fraction belongs to some other
             // direction's story (that parameter's own standard error).
-            // A value at zero moves by an undefined fraction of itself: its
-            // standard error speaks for it (a direction 0.46 as visible as
-            // the best was listed for moving zeros by 2e10 %).
             .filter(|(_, c, m)| *m > 0.5 && c.abs() > 0.3)
-            .filter(|(n, _, _)| !at_zero.contains(n))
             .collect();
         loose.sort_by(|a, b| b.1.abs().total_cmp(&a.1.abs()));
         if !loose.is_empty() {
