@@ -53,10 +53,12 @@ const R: [f32; 5] = [
     0.001_330_262_6,
 ];
 
-/// `q 2^n` for a normal `q` in [0.7, 1.5) and `n` in [-125, 127], or `None`.
+/// `q 2^n` for a normal `q` in [0.7, 1.5) and `n` in [-125, 127], or `None`. `n` is a
+/// wrapped bit difference and can be anything for huge arguments, so the test wraps too (with
+/// `n + 125`, `expf(-17443600.0)` overflowed `i32`: a panic in debug builds, found by review).
 #[inline(always)]
 fn scale(q: f32, n: i32) -> Option<f32> {
-    if (n + 125) as u32 <= 252 {
+    if (n as u32).wrapping_add(125) <= 252 {
         Some(f32::from_bits(q.to_bits().wrapping_add((n as u32) << 23)))
     } else {
         None
@@ -207,6 +209,20 @@ mod tests {
     //! (`|got - exact| / ulp(exact)`, ulp = 2^-23 of the exact value's binade), so
     //! 0.5 is a correctly rounded result.
     use super::*;
+
+    /// Where `x log2 e` or `y log2 x` lies just beyond the rounding constant, the exponent's
+    /// bit difference wraps to near `i32::MAX`; the range test must not overflow on it.
+    #[test]
+    fn arguments_whose_exponent_wraps_underflow_without_overflowing() {
+        for x in [-17_443_600.0f32, -17_443_618.0, -17_443_534.0, -2.0e7] {
+            assert_eq!(expf(x), 0.0, "e^{x}");
+        }
+        for y in [25_165_800.0f32, 25_165_824.0, 3.0e7] {
+            assert_eq!(powf(0.5, y), 0.0, "0.5^{y}");
+            assert_eq!(powf(2.0, -y), 0.0, "2^-{y}");
+            assert_eq!(powf(2.0, y), f32::INFINITY, "2^{y}");
+        }
+    }
 
     /// Largest error of [`expf`] in ulps where the result is normal (measured 2.19).
     const EXPF_BOUND_ULP: f64 = 2.5;
