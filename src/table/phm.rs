@@ -25,9 +25,14 @@ pub(super) const MAX_POINTS: u8 = 254;
 /// Bytes before the point slots.
 const COUNTS: usize = 4;
 
-/// Bytes of one PHM record with `points` slots per curve in `scalar`.
+/// Bytes of one PHM record with `points` slots per curve in `scalar` (`usize::MAX` for a
+/// `points` so large that the size does not fit).
 pub fn phm_record_size(points: usize, scalar: ScalarKind) -> usize {
-    COUNTS + (4 * points + SPECS.len()) * scalar.width()
+    points
+        .saturating_mul(4)
+        .saturating_add(SPECS.len())
+        .saturating_mul(scalar.width())
+        .saturating_add(COUNTS)
 }
 
 /// A verified table of PHM parameter sets in the arithmetic `S` with room

@@ -24,7 +24,7 @@ fn all_four() -> BwbnParams<f64> {
 
 fn bwbn_table(scalar: ScalarKind, elements: &[BwbnParams<f64>]) -> Vec<u8> {
     let effects = elements[0].effect_set();
-    let mut out = vec![0u8; bwbn_len(effects, scalar, elements.len())];
+    let mut out = vec![0u8; bwbn_len(effects, scalar, elements.len()).unwrap()];
     let n = write_bwbn(&mut out, scalar, &units(), elements).unwrap();
     assert_eq!(n, out.len());
     out
@@ -40,7 +40,7 @@ fn phm_params() -> PhmParams<f64> {
 }
 
 fn phm_table(scalar: ScalarKind, elements: &[PhmParams<f64>]) -> Vec<u8> {
-    let mut out = vec![0u8; phm_len(4, scalar, elements.len())];
+    let mut out = vec![0u8; phm_len(4, scalar, elements.len()).unwrap()];
     let n = write_phm(
         &mut out,
         scalar,
@@ -118,6 +118,26 @@ fn layout_matches_the_documented_offsets() {
     // The negative curve's fourth slot is unused: zero.
     assert!(p[40 + 64 + 48..40 + 128].iter().all(|&b| b == 0));
     assert_eq!(d(40 + 128), -0.0028, "eq1a_a first among the coefficients");
+}
+
+/// The sizes `write_*` fill exactly, and `None` where they do not fit in `usize` (the
+/// products overflowed: a panic in debug builds, a wrapped size in release; found by review).
+#[test]
+fn table_sizes_are_exact_or_none() {
+    let one = bwbn_table(ScalarKind::F32, &[plain()]);
+    assert_eq!(
+        bwbn_len(EffectSet::NONE, ScalarKind::F32, 1),
+        Some(one.len())
+    );
+    let one = phm_table(ScalarKind::F32, &[phm_params()]);
+    assert_eq!(phm_len(4, ScalarKind::F32, 1), Some(one.len()));
+    assert_eq!(
+        bwbn_len(EffectSet::BWBN, ScalarKind::F64, usize::MAX / 8),
+        None
+    );
+    assert_eq!(phm_len(4, ScalarKind::F64, usize::MAX / 8), None);
+    assert_eq!(phm_len(usize::MAX / 4, ScalarKind::Q16, 1), None);
+    assert_eq!(phm_record_size(usize::MAX, ScalarKind::F64), usize::MAX);
 }
 
 #[test]
@@ -529,7 +549,7 @@ proptest! {
             )
         }
         fn check<S: TableScalar>(p: &PhmParams<f64>) -> Result<(), TestCaseError> {
-            let mut out = vec![0u8; phm_len(8, S::KIND, 2)];
+            let mut out = vec![0u8; phm_len(8, S::KIND, 2).unwrap()];
             let n = write_phm(&mut out, S::KIND, &Units::default(), &[p.clone(), p.clone()]).unwrap();
             let loaded = PhmTable::<S>::load(&out[..n]).map(|t| t.iter().collect::<Vec<_>>());
             let want = expect::<S>(p).map(|q| vec![q.clone(), q]).map_err(|error| TableError::Phm { element: 0, error });

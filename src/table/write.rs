@@ -10,14 +10,20 @@ use crate::bwbn::{BwbnParams, EffectSet, ZuRule};
 use crate::phm::{Direction, PhmParams};
 use crate::scalar::Scalar;
 
-/// Bytes of a BWBN table of `count` elements.
-pub fn bwbn_len(effects: EffectSet, scalar: ScalarKind, count: usize) -> usize {
-    HEADER_LEN + count * bwbn_record_size(effects, scalar) + CRC_LEN
+/// Bytes of a BWBN table of `count` elements, `None` if that does not fit in `usize`.
+pub fn bwbn_len(effects: EffectSet, scalar: ScalarKind, count: usize) -> Option<usize> {
+    table_len(count, bwbn_record_size(effects, scalar))
 }
 
-/// Bytes of a PHM table of `count` elements with `points` slots per curve.
-pub fn phm_len(points: usize, scalar: ScalarKind, count: usize) -> usize {
-    HEADER_LEN + count * phm_record_size(points, scalar) + CRC_LEN
+/// Bytes of a PHM table of `count` elements with `points` slots per curve, `None` if that
+/// does not fit in `usize`.
+pub fn phm_len(points: usize, scalar: ScalarKind, count: usize) -> Option<usize> {
+    table_len(count, phm_record_size(points, scalar))
+}
+
+/// Header, `count` records of `record` bytes and the CRC.
+fn table_len(count: usize, record: usize) -> Option<usize> {
+    count.checked_mul(record)?.checked_add(HEADER_LEN + CRC_LEN)
 }
 
 /// The parts every table shares.

@@ -240,10 +240,12 @@ pub fn encode(src: &Sources, scalar: ScalarKind) -> Result<Vec<u8>> {
         }
     }
     let n = src.elements.len();
-    let mut out = match &src.elements {
-        Elements::Bwbn(v) => vec![0u8; table::bwbn_len(v[0].effect_set(), scalar, n)],
-        Elements::Phm(_) => vec![0u8; table::phm_len(PHM_POINTS, scalar, n)],
-    };
+    let len = match &src.elements {
+        Elements::Bwbn(v) => table::bwbn_len(v[0].effect_set(), scalar, n),
+        Elements::Phm(_) => table::phm_len(PHM_POINTS, scalar, n),
+    }
+    .ok_or_else(|| anyhow!("{n} elements make a table larger than this machine can address"))?;
+    let mut out = vec![0u8; len];
     let len = match &src.elements {
         Elements::Bwbn(v) => table::write_bwbn(&mut out, scalar, &src.units, v),
         Elements::Phm(v) => table::write_phm(&mut out, scalar, &src.units, v),
