@@ -67,7 +67,7 @@ fn bench(c: &mut Criterion) {
             }
             group.bench_with_input(BenchmarkId::new(name, scheme), &h, |b, h| {
                 b.iter(|| {
-                    let mut el = Bwbn::with_extra(p, (), control);
+                    let mut el = Bwbn::with_extra(p, (), control).unwrap();
                     let mut acc = 0.0;
                     for &u in h {
                         acc += el.set_trial(black_box(u)).expect("step").force;

@@ -27,7 +27,9 @@ pub struct Response<S> {
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[non_exhaustive]
 pub enum StepError {
-    /// The input (displacement, time step or forcing) was NaN or infinite.
+    /// The input (displacement, time step or forcing) was NaN or infinite, or cannot be
+    /// used as given: a time step that is not positive, or in fixed point an increment
+    /// `u - u_committed` or a time step squared beyond the arithmetic's range.
     NonFiniteInput,
     /// The integrator could not meet its error tolerance within the work budget
     /// of one step (the maximum number of sub-steps).
@@ -48,7 +50,9 @@ pub enum StepError {
 impl fmt::Display for StepError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.write_str(match self {
-            StepError::NonFiniteInput => "input is NaN or infinite",
+            StepError::NonFiniteInput => {
+                "input is NaN or infinite, or beyond the arithmetic's range (or a time step <= 0)"
+            }
             StepError::ToleranceNotMet => {
                 "the step could not meet its error tolerance within its sub-step budget"
             }

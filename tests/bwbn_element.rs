@@ -2,7 +2,9 @@
 
 mod common;
 
-use hysteresis::bwbn::{BoucWen, Bwbn, BwbnParams, Control, EffectKind, EffectSet, Method};
+use hysteresis::bwbn::{
+    BoucWen, Bwbn, BwbnParams, Control, EffectKind, EffectSet, Method, ParamError, Rule, Sdof,
+};
 use hysteresis::{Element, StepError};
 
 fn named(set: EffectSet, extra: &[(&str, f64)]) -> BwbnParams<f64> {
@@ -101,7 +103,7 @@ fn tangent_matches_finite_differences() {
     };
     for params in [named(EffectSet::NONE, &[]), full()] {
         let mut el = Bwbn::new(params);
-        let mut reference = Bwbn::new(params).with_control(tight);
+        let mut reference = Bwbn::new(params).with_control(tight).unwrap();
         let mut checked = 0;
         for (i, &u) in history.iter().enumerate() {
             let r = el.set_trial(u).unwrap();
@@ -202,13 +204,93 @@ fn a_step_over_budget_fails_without_touching_the_state() {
         tol: 1e-14,
         max_substeps: 2,
     };
-    let mut el = Bwbn::new(named(EffectSet::NONE, &[])).with_control(starved);
+    let mut el = Bwbn::new(named(EffectSet::NONE, &[]))
+        .with_control(starved)
+        .unwrap();
     let (committed, response) = (*el.committed(), el.response());
     assert_eq!(el.set_trial(4.0), Err(StepError::ToleranceNotMet));
     assert_eq!(
         (*el.committed(), *el.trial(), el.response()),
         (committed, committed, response)
     );
+}
+
+/// A control an element cannot integrate with is refused when the element takes it, by field.
+/// With `tol = -1` every sub-step passed its error test and one Dormand-Prince step across
+/// 10 mm (Zu = 1) returned z = -685356 with `Ok`.
+#[test]
+fn a_control_that_cannot_bound_the_error_is_refused_by_name() {
+    let bad = [
+        (-1.0, 1000, "tol", Rule::NotPositive),
+        (0.0, 1000, "tol", Rule::NotPositive),
+        (f64::NAN, 1000, "tol", Rule::NotFinite),
+        (f64::INFINITY, 1000, "tol", Rule::NotFinite),
+        (1e-9, 0, "max_substeps", Rule::NotPositive),
+    ];
+    let plain = BwbnParams::plain(BoucWen::new(6.0, 0.2, 1.2, 2.0, -1.0).unwrap());
+    for (tol, max_substeps, field, rule) in bad {
+        let control = Control {
+            method: Method::Dp54,
+            tol,
+            max_substeps,
+        };
+        let expected = Err(ParamError { field, rule });
+        assert_eq!(Bwbn::new(plain).with_control(control).map(|_| ()), expected);
+        assert_eq!(Bwbn::with_extra(plain, (), control).map(|_| ()), expected);
+        let osc = Sdof::new(plain, 0.05).unwrap().with_control(control);
+        assert_eq!(osc.map(|_| ()), expected);
+        assert_eq!(
+            Sdof::with_extra(plain, 0.05, (), control).map(|_| ()),
+            expected
+        );
+    }
+    // The same step with a valid control ends just below the asymptote: z tends to Zu = 1, so
+    // the force to alpha k0 u + (1 - alpha) k0 Zu.
+    let mut el = Bwbn::new(plain)
+        .with_control(Control {
+            method: Method::Dp54,
+            tol: 1e-9,
+            max_substeps: 1000,
+        })
+        .unwrap();
+    let f = el.set_trial(10.0).unwrap().force;
+    let asymptote = 0.2 * 6.0 * 10.0 + 0.8 * 6.0;
+    assert!(f < asymptote && asymptote - f < 1e-4, "{f}");
+}
+
+/// With beta < 0 unloading is softer than loading and the energy `∫ z du` falls below zero,
+/// where no degradation or pinching function was validated: such a set is refused once an
+/// effect reads the energy, and stays legal plain Bouc-Wen, whose energy then does go negative.
+#[test]
+fn a_negative_beta_is_refused_where_the_energy_is_read() {
+    let values = |n: &str| match n {
+        "k0" => Some(1.0),
+        "alpha" => Some(0.0),
+        "n" => Some(1.0),
+        "beta" => Some(-0.25),
+        "gamma" => Some(0.75),
+        "nu0" => Some(1.0),
+        "delta_nu" => Some(0.01),
+        _ => None,
+    };
+    let refused = BwbnParams::from_named(
+        EffectSet::NONE.with(EffectKind::StrengthDegradation),
+        values,
+    );
+    assert_eq!(
+        refused.map(|_| ()),
+        Err(ParamError {
+            field: "beta",
+            rule: Rule::EnergyCanFallBelowZero
+        })
+    );
+    let plain = BwbnParams::from_named(EffectSet::NONE, values).unwrap();
+    let mut el = Bwbn::new(plain);
+    for u in [1.0, 2.0, 3.0, 2.0, 1.0, 0.0] {
+        el.set_trial(u).unwrap();
+        el.commit();
+    }
+    assert!(el.committed().energy < 0.0, "{:?}", el.committed());
 }
 
 #[test]
@@ -250,7 +332,7 @@ fn hardening_sets_are_legal_and_diverge_with_an_error_not_a_nan() {
         tol: 1e-9,
         max_substeps: u16::MAX,
     };
-    let mut el = el.with_control(patient);
+    let mut el = el.with_control(patient).unwrap();
     assert_eq!(el.set_trial(3.0), Err(StepError::NonFiniteState));
     assert_eq!(*el.committed(), committed);
 }
@@ -301,8 +383,10 @@ fn asymmetry_gives_unequal_strength_and_stiffness() {
         method: Method::Dp54,
         ..Control::default_for()
     };
-    let mut plain = Bwbn::new(named(EffectSet::NONE, &[])).with_control(dp54);
-    let mut zero = Bwbn::new(off).with_control(dp54);
+    let mut plain = Bwbn::new(named(EffectSet::NONE, &[]))
+        .with_control(dp54)
+        .unwrap();
+    let mut zero = Bwbn::new(off).with_control(dp54).unwrap();
     assert_eq!(drive(&mut plain, &ups), drive(&mut zero, &ups));
 }
 

@@ -27,7 +27,7 @@ fn case_params(case: &str) -> BwbnParams<f64> {
 }
 
 fn run(params: BwbnParams<f64>, control: Control<f64>, history: &[f64]) -> Vec<(f64, f64)> {
-    let mut el = Bwbn::with_extra(params, (), control);
+    let mut el = Bwbn::with_extra(params, (), control).unwrap();
     history
         .iter()
         .map(|&u| {

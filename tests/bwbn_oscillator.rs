@@ -109,7 +109,8 @@ fn params<S: Scalar>(case: &Case) -> Option<BwbnParams<S>> {
 fn run<S: Scalar>(case: &Case, control: Control<S>) -> Option<(Vec<f64>, bool)> {
     let mut osc = Sdof::new(params::<S>(case)?, S::from_f64(case.xi))
         .ok()?
-        .with_control(control);
+        .with_control(control)
+        .unwrap();
     let mut u = Vec::with_capacity(case.forces.len());
     for &f in &case.forces {
         match osc.step(S::from_f64(case.dt), S::from_f64(f)) {

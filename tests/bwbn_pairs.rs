@@ -122,7 +122,7 @@ fn pair<S: Scalar>() -> Control<S> {
 /// The largest force error over peak force up to the first refused
 /// increment, and whether one was refused.
 fn worst<S: Scalar>(p: BwbnParams<S>, history: &[f64], reference: &[f64]) -> (f64, bool) {
-    let mut el = Bwbn::with_extra(p, (), pair::<S>());
+    let mut el = Bwbn::with_extra(p, (), pair::<S>()).unwrap();
     let peak = reference.iter().fold(0.0f64, |m, r| m.max(r.abs()));
     let mut worst = 0.0f64;
     for (&u, r) in history.iter().zip(reference) {
@@ -156,7 +156,7 @@ fn family(family: Family, sets: usize, seed: u64) -> [(f64, usize); 3] {
             tol: 1e-13,
             max_substeps: 60_000,
         };
-        let mut el = Bwbn::with_extra(p, (), tight);
+        let mut el = Bwbn::with_extra(p, (), tight).unwrap();
         let reference: Option<Vec<f64>> = history
             .iter()
             .map(|&u| {

@@ -155,9 +155,9 @@ proptest! {
     fn adversarial_histories_f64(bits in 0u8..32, v in param_values(), h in history()) {
         if let Some(p) = params(bits, &v) {
             check(Bwbn::new(p), &h)?;
-            check(Bwbn::new(p).with_control(Control::opensees(1e-10, 50)), &h)?;
-            check(Bwbn::new(p).with_control(Control { method: Method::Bs32, tol: 1e-5, max_substeps: 64 }), &h)?;
-            check(Bwbn::new(p).with_control(Control { method: Method::Series, tol: 1e-9, max_substeps: 1000 }), &h)?;
+            check(Bwbn::new(p).with_control(Control::opensees(1e-10, 50)).unwrap(), &h)?;
+            check(Bwbn::new(p).with_control(Control { method: Method::Bs32, tol: 1e-5, max_substeps: 64 }).unwrap(), &h)?;
+            check(Bwbn::new(p).with_control(Control { method: Method::Series, tol: 1e-9, max_substeps: 1000 }).unwrap(), &h)?;
         }
     }
 
@@ -166,12 +166,12 @@ proptest! {
         if let Some(p) = params(bits, &v) {
             if let Ok(p32) = BwbnParams::<f32>::from_named(p.effect_set(), |n| p.get(n).map(|x| x as f32)) {
                 check(Bwbn::new(p32), &h)?;
-                check(Bwbn::new(p32).with_control(Control { method: Method::Series, tol: 1e-5, max_substeps: 64 }), &h)?;
+                check(Bwbn::new(p32).with_control(Control { method: Method::Series, tol: 1e-5, max_substeps: 64 }).unwrap(), &h)?;
             }
             let fixed = BwbnParams::<Fixed>::from_named(p.effect_set(), |n| p.get(n).map(Fixed::from_f64));
             if let Ok(pq) = fixed {
                 check(Bwbn::new(pq), &h)?;
-                check(Bwbn::new(pq).with_control(Control { method: Method::Series, tol: Fixed::from_f64(2e-4), max_substeps: 64 }), &h)?;
+                check(Bwbn::new(pq).with_control(Control { method: Method::Series, tol: Fixed::from_f64(2e-4), max_substeps: 64 }).unwrap(), &h)?;
             }
         }
     }

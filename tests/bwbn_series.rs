@@ -35,7 +35,7 @@ fn run<S: Scalar>(el: &mut Bwbn<S>, history: &[f64]) -> Vec<[f64; 3]> {
 
 fn converged(p: BwbnParams<f64>, history: &[f64]) -> Vec<[f64; 3]> {
     let tight = control(Method::Dp54, 1e-13, 60_000);
-    run(&mut Bwbn::with_extra(p, (), tight), history)
+    run(&mut Bwbn::with_extra(p, (), tight).unwrap(), history)
 }
 
 /// Largest errors of force (over peak force), tangent (over k0) and energy
@@ -80,7 +80,7 @@ fn reference_history_within_the_tolerance() {
     let reference = converged(p, &h);
     let mut last = f64::INFINITY;
     for tol in [1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10] {
-        let mut el = Bwbn::with_extra(p, (), control(Method::Series, tol, 1000));
+        let mut el = Bwbn::with_extra(p, (), control(Method::Series, tol, 1000)).unwrap();
         let [force, tangent, energy] = errors(&run(&mut el, &h), &reference, 6.0);
         assert!(force <= tol, "tol {tol:e}: force error {force:e} of peak");
         assert!(energy <= tol, "tol {tol:e}: energy error {energy:e}");
@@ -141,7 +141,7 @@ fn parameter_sets_within_the_tolerance() {
     for (n, beta, gamma) in sets {
         let p = BwbnParams::plain(BoucWen::new(3.0, 0.1, n, beta, gamma).unwrap());
         let reference = converged(p, &h);
-        let mut el = Bwbn::with_extra(p, (), control(Method::Series, 1e-9, 1000));
+        let mut el = Bwbn::with_extra(p, (), control(Method::Series, 1e-9, 1000)).unwrap();
         let [force, tangent, energy] = errors(&run(&mut el, &h), &reference, 3.0);
         assert!(
             force <= 1e-8 && energy <= 1e-8 && tangent <= 1e-6,
@@ -156,7 +156,7 @@ fn parameter_sets_within_the_tolerance() {
 #[test]
 fn one_huge_increment_reaches_zu() {
     let p = reference_params();
-    let mut el = Bwbn::with_extra(p, (), control(Method::Series, 1e-9, 1000));
+    let mut el = Bwbn::with_extra(p, (), control(Method::Series, 1e-9, 1000)).unwrap();
     let r = el.set_trial(1000.0).unwrap();
     assert!((el.trial().z - 1.0).abs() < 1e-9, "z = {}", el.trial().z);
     assert!((r.force - (0.2 * 6.0 * 1000.0 + 0.8 * 6.0)).abs() < 1e-9);
@@ -171,12 +171,12 @@ fn effects_on_integrate_by_the_arithmetics_pair() {
     fn check<S: Scalar>(pair: Method, tol: f64, max_substeps: u16) {
         let p = common::reference_params_in::<S>(EffectSet::BWBN);
         let h = common::reference_history();
-        let mut el = Bwbn::with_extra(p, (), control(Method::Series, tol, max_substeps));
+        let mut el = Bwbn::with_extra(p, (), control(Method::Series, tol, max_substeps)).unwrap();
         assert_eq!(el.control().method, pair, "{}", S::NAME);
         assert_eq!(Control::<S>::pair_for(), pair);
         let series = run(&mut el, &h);
         let direct = run(
-            &mut Bwbn::with_extra(p, (), control(pair, tol, max_substeps)),
+            &mut Bwbn::with_extra(p, (), control(pair, tol, max_substeps)).unwrap(),
             &h,
         );
         assert_eq!(series, direct, "{}", S::NAME);
@@ -194,12 +194,12 @@ fn f32_and_fixed_point_within_their_bounds() {
     let h = common::reference_history();
     let reference = converged(reference_params(), &h);
     let p32 = BwbnParams::plain(BoucWen::new(6.0f32, 0.2, 1.2, 2.0, -1.0).unwrap());
-    let mut el = Bwbn::with_extra(p32, (), control(Method::Series, 1e-5, 64));
+    let mut el = Bwbn::with_extra(p32, (), control(Method::Series, 1e-5, 64)).unwrap();
     let [force, ..] = errors(&run(&mut el, &h), &reference, 6.0);
     assert!(force <= 1e-4, "f32: {force:e} of peak");
     let q = |v: f64| Fixed::from_f64(v);
     let pq = BwbnParams::plain(BoucWen::new(q(6.0), q(0.2), q(1.2), q(2.0), q(-1.0)).unwrap());
-    let mut el = Bwbn::with_extra(pq, (), control(Method::Series, 2e-4, 64));
+    let mut el = Bwbn::with_extra(pq, (), control(Method::Series, 2e-4, 64)).unwrap();
     let [force, ..] = errors(&run(&mut el, &h), &reference, 6.0);
     assert!(force <= 1e-3, "Q15.16: {force:e} of peak");
 }
@@ -207,7 +207,8 @@ fn f32_and_fixed_point_within_their_bounds() {
 /// Non-finite input is refused and leaves the element as it was.
 #[test]
 fn non_finite_input_changes_nothing() {
-    let mut el = Bwbn::with_extra(reference_params(), (), control(Method::Series, 1e-9, 1000));
+    let mut el =
+        Bwbn::with_extra(reference_params(), (), control(Method::Series, 1e-9, 1000)).unwrap();
     el.set_trial(0.7).unwrap();
     el.commit();
     let before = (*el.committed(), el.response());
@@ -244,7 +245,7 @@ proptest::proptest! {
         let mut u = 0.0;
         let h: Vec<f64> = steps.iter().map(|s| { u += s * scale; u }).collect();
         let p = BwbnParams::plain(base);
-        let mut tight = Bwbn::with_extra(p, (), control(Method::Dp54, 1e-13, 60_000));
+        let mut tight = Bwbn::with_extra(p, (), control(Method::Dp54, 1e-13, 60_000)).unwrap();
         let mut reference = Vec::new();
         for &u in &h {
             let r = tight.set_trial(u);
@@ -253,7 +254,7 @@ proptest::proptest! {
             tight.commit();
         }
         let peak = reference.iter().fold(0.0f64, |m, f| m.max(f.abs()));
-        let mut el = Bwbn::with_extra(p, (), control(Method::Series, 1e-9, 1000));
+        let mut el = Bwbn::with_extra(p, (), control(Method::Series, 1e-9, 1000)).unwrap();
         for (&u, &f) in h.iter().zip(&reference) {
             let r = el.set_trial(u);
             proptest::prop_assert!(r.is_ok(), "u = {u}: {r:?}");
@@ -394,7 +395,7 @@ fn closed_form_increments_near_zero_n1() {
                 )
                 .unwrap(),
             );
-            let mut el = Bwbn::with_extra(p, (), control::<S>(Method::Series, tol, 1000));
+            let mut el = Bwbn::with_extra(p, (), control::<S>(Method::Series, tol, 1000)).unwrap();
             let scale = p.z_scale().to_f64();
             let mut worst = 0.0f64;
             for i in 0..20_000 {
@@ -434,7 +435,7 @@ fn closed_form_increments_near_zero_n1() {
 #[test]
 fn review_cases_near_zero_are_not_refused() {
     let p = BwbnParams::plain(BoucWen::new(3.0, 0.1, 0.5, 2.0, -1.0).unwrap());
-    let mut el = Bwbn::with_extra(p, (), control(Method::Series, 1e-6, 1000));
+    let mut el = Bwbn::with_extra(p, (), control(Method::Series, 1e-6, 1000)).unwrap();
     el.set_trial(0.015557311683520588).unwrap();
     let p = BwbnParams::plain(BoucWen::new(3.0f32, 0.1, 0.5, 2.0, -1.0).unwrap());
     let mut refused = 0;
@@ -465,7 +466,8 @@ fn increments_ending_at_the_edge_of_the_sums() {
         for k in -40..40 {
             for base in [u_edge, x_edge] {
                 let u = S::from_f64(base + k as f64 * ulp);
-                let mut el = Bwbn::with_extra(p, (), control::<S>(Method::Series, tol, 1000));
+                let mut el =
+                    Bwbn::with_extra(p, (), control::<S>(Method::Series, tol, 1000)).unwrap();
                 el.set_trial(u).unwrap();
                 let exact = exact_z_n1(0.5, -1.0, 0.0, u.to_f64());
                 let err = (el.trial().z.to_f64() - exact).abs() / (tol * p.z_scale().to_f64());
@@ -577,7 +579,7 @@ fn fixed_point_review_cases() {
     // increment: z +9.19 instead of -10.22, 39% of peak force off, accepted.
     // Now the increment is either refused with the state unchanged or right.
     let (mut el, exact) = both(1.0, 0.1, 4.0, 0.01, -0.0099);
-    let mut reference = Bwbn::with_extra(exact, (), control(Method::Dp54, 1e-13, 60_000));
+    let mut reference = Bwbn::with_extra(exact, (), control(Method::Dp54, 1e-13, 60_000)).unwrap();
     for u in [50.0, -350.0] {
         let before = *el.committed();
         let expected = reference.set_trial(u).unwrap().force;
@@ -602,7 +604,7 @@ fn fixed_point_review_cases() {
             let h = [0.1 * f64::from(i), 0.1 * f64::from(i) - 0.15 * f64::from(j)];
             let (mut el, exact) = both(1.0, 0.1, 0.3, 2.0, -1.0);
             let reference = run(
-                &mut Bwbn::with_extra(exact, (), control(Method::Dp54, 1e-13, 60_000)),
+                &mut Bwbn::with_extra(exact, (), control(Method::Dp54, 1e-13, 60_000)).unwrap(),
                 &h,
             );
             let got = run(&mut el, &h);
@@ -649,7 +651,7 @@ fn unresolvable_sums_integrate_by_the_pair() {
     let mut el = Bwbn::new(hardening);
     assert_eq!(el.control().method, Method::Series);
     let exact = BwbnParams::plain(BoucWen::new(1.0, 0.1, 0.1, -1.0, -1.0).unwrap());
-    let mut reference = Bwbn::with_extra(exact, (), control(Method::Dp54, 1e-13, 60_000));
+    let mut reference = Bwbn::with_extra(exact, (), control(Method::Dp54, 1e-13, 60_000)).unwrap();
     for u in [0.1f32, 0.3, 1.0] {
         let z = el.set_trial(u).map(|_| el.trial().z).unwrap();
         el.commit();

@@ -72,7 +72,8 @@ impl BwIdentification {
         let base = BoucWen::new(K, x[0], x[4], x[1], x[2]).ok()?;
         let mut osc = Sdof::from_physical(BwbnParams::plain(base), MASS, x[3])
             .ok()?
-            .with_control(self.control);
+            .with_control(self.control)
+            .unwrap();
         let mut sum = 0.0;
         for (i, u_meas) in self.measured.iter().enumerate() {
             let t = i as f64 * DT;

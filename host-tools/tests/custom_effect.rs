@@ -38,7 +38,8 @@ fn slipping_column() -> Experiment {
         .build(|n| TRUTH.iter().find(|(k, _)| *k == n).map(|(_, v)| *v))
         .unwrap();
     let u = hyst::discover::synthetic::path(hyst::discover::synthetic::Path::StepWise);
-    let mut el = Bwbn::with_extra(params, &extras, hysteresis::bwbn::Control::default_for());
+    let mut el =
+        Bwbn::with_extra(params, &extras, hysteresis::bwbn::Control::default_for()).unwrap();
     let mut gauss = hyst::data::Normal::new(5);
     let mut f = vec![];
     for &ui in &u {

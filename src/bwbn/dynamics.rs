@@ -170,7 +170,8 @@ impl<S: Scalar> Sdof<S> {
 }
 
 impl<S: Scalar, X: Effect<S>> Sdof<S, X> {
-    /// An oscillator with an extra effect and explicit integration control.
+    /// An oscillator with an extra effect and explicit integration control, which must pass
+    /// [`Control::checked`].
     pub fn with_extra(
         params: BwbnParams<S>,
         xi: S,
@@ -183,6 +184,8 @@ impl<S: Scalar, X: Effect<S>> Sdof<S, X> {
         if xi < S::ZERO {
             return Err(ParamError::new("xi", Rule::Negative));
         }
+        let control = control.checked()?;
+        super::effects::energy_cannot_fall_below_zero(params.base(), extra.reads_energy())?;
         let w0 = params.base().k0.sqrt();
         let atol = Self::atol(&params, &control);
         let mut osc = Sdof {
@@ -213,11 +216,13 @@ impl<S: Scalar, X: Effect<S>> Sdof<S, X> {
         ])
     }
 
-    /// The same oscillator with another integration control (state kept).
-    pub fn with_control(mut self, control: Control<S>) -> Self {
+    /// The same oscillator with another integration control (state kept), which must pass
+    /// [`Control::checked`].
+    pub fn with_control(mut self, control: Control<S>) -> Result<Self, ParamError> {
+        let control = control.checked()?;
         self.atol = Self::atol(&self.params, &control);
         self.control = control;
-        self
+        Ok(self)
     }
 
     /// Back to rest at t = 0 with zero forcing.

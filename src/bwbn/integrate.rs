@@ -49,10 +49,12 @@
 //!   [`REVERSAL_REACH`] of its scale), not with the size carried over from
 //!   the other direction, where z may have moved a hundred times slower.
 //!
-//! When a sub-step fails `max_substeps` times in one increment, or its size
-//! falls below the arithmetic's resolution, the increment fails with
+//! When an increment has attempted `max_substeps` sub-steps (accepted and
+//! rejected together) without reaching its end, or a sub-step's size falls below
+//! the arithmetic's resolution, the increment fails with
 //! [`StepError::ToleranceNotMet`] and the caller keeps its old state.
 
+use super::spec::{ParamError, Rule};
 use crate::element::StepError;
 use crate::scalar::Scalar;
 
@@ -147,6 +149,24 @@ impl<S: Scalar> Control<S> {
         } else {
             Method::Bs32
         }
+    }
+
+    /// `Ok(self)` if an element can integrate with it: a finite, positive `tol` and a budget of
+    /// at least one sub-step. With `tol < 0` every error ratio is negative, so every sub-step
+    /// is accepted and grown, whatever its error: one Dormand-Prince step across 10 Zu returned
+    /// z = -685356 for an asymptote of 1 (found by review). The element constructors that take
+    /// a control call this.
+    pub fn checked(self) -> Result<Self, ParamError> {
+        if !self.tol.is_finite() {
+            return Err(ParamError::new("tol", Rule::NotFinite));
+        }
+        if self.tol <= S::ZERO {
+            return Err(ParamError::new("tol", Rule::NotPositive));
+        }
+        if self.max_substeps == 0 {
+            return Err(ParamError::new("max_substeps", Rule::NotPositive));
+        }
+        Ok(self)
     }
 
     /// OpenSees' scheme: one backward-Euler step per increment, Newton to

@@ -104,13 +104,24 @@ impl<S: Scalar> Bwbn<S> {
     /// An element in its virgin state, integrated with
     /// [`Control::default_for`].
     pub fn new(params: BwbnParams<S>) -> Self {
-        Self::with_extra(params, (), Control::default_for())
+        Self::build(params, (), Control::default_for())
     }
 }
 
 impl<S: Scalar, X: Effect<S>> Bwbn<S, X> {
-    /// An element with an extra effect and explicit integration control.
-    pub fn with_extra(params: BwbnParams<S>, extra: X, control: Control<S>) -> Self {
+    /// An element with an extra effect and explicit integration control, which must pass
+    /// [`Control::checked`].
+    pub fn with_extra(
+        params: BwbnParams<S>,
+        extra: X,
+        control: Control<S>,
+    ) -> Result<Self, ParamError> {
+        effects::energy_cannot_fall_below_zero(params.base(), extra.reads_energy())?;
+        Ok(Self::build(params, extra, control.checked()?))
+    }
+
+    /// The element with a control known to be valid.
+    fn build(params: BwbnParams<S>, extra: X, control: Control<S>) -> Self {
         let atol = Self::atol(&params, &extra, &control);
         let control = Self::resolved(&params, &extra, control);
         let mut el = Bwbn {
@@ -151,11 +162,13 @@ impl<S: Scalar, X: Effect<S>> Bwbn<S, X> {
         }
     }
 
-    /// The same element with another integration control (the state is kept).
-    pub fn with_control(mut self, control: Control<S>) -> Self {
+    /// The same element with another integration control (the state is kept), which must pass
+    /// [`Control::checked`].
+    pub fn with_control(mut self, control: Control<S>) -> Result<Self, ParamError> {
+        let control = control.checked()?;
         self.atol = Self::atol(&self.params, &self.extra, &control);
         self.control = Self::resolved(&self.params, &self.extra, control);
-        self
+        Ok(self)
     }
 
     /// `control` as this element integrates: [`Method::Series`] sums plain

@@ -84,6 +84,11 @@ pub enum Rule {
     /// `k0 (1 + |beta - gamma| Zu^n)` of a reversal there) is too large for
     /// the arithmetic.
     DerivedOverflow,
+    /// beta < 0 with an effect that reads the energy: unloading is then softer than loading
+    /// (eq. 3.4 with `sgn(du z) = -1` gives `A - |z|^n (gamma - beta)`), and the energy
+    /// `∫ z du` falls below zero, outside the range `[0, energy_limit]` on which degradation and
+    /// pinching were validated. Plain Bouc-Wen allows it.
+    EnergyCanFallBelowZero,
     /// A required parameter is missing.
     Missing,
     /// The name is not a parameter of the model.
@@ -110,6 +115,9 @@ impl Rule {
             }
             Rule::DerivedOverflow => {
                 "makes a factor derived from it (for asymmetry (1 ± a)^-n, for plain Bouc-Wen Zu^n = 1/(beta + gamma) or the stiffness of a reversal at Zu) too large for the arithmetic"
+            }
+            Rule::EnergyCanFallBelowZero => {
+                "is negative, which makes unloading softer than loading, so the energy read by degradation and pinching can fall below zero"
             }
             Rule::Missing => "is required but missing",
             Rule::Unknown => "is not a parameter of this model",

@@ -10,8 +10,9 @@
 //! saturated values, `i32::MAX` or `i32::MIN`, which play the part of ±infinity:
 //! [`Scalar::is_finite`] is false for them and every operation with a saturated
 //! operand returns a saturated value again (also `inf * 0` and `inf - inf`, which
-//! would be NaN in floating point), so a saturation anywhere in a computation is
-//! visible in its result.
+//! would be NaN in floating point), with one exception: a finite value divided by a
+//! saturated one is 0, as `x / inf` is in floating point. So a saturation anywhere in
+//! a computation is visible in its result unless it only ever divides.
 //!
 //! `x^y`, `e^x` and `sqrt` use only integer instructions: `x^y = 2^(y log2 x)`,
 //! with `log2` of the mantissa from a degree-7 polynomial on [1/sqrt 2, sqrt 2)

@@ -84,7 +84,7 @@ pub fn simulate(
     extras: &Extras,
     u: &[f64],
 ) -> Result<Simulation> {
-    let mut el = Bwbn::with_extra(*params, extras, Control::default_for());
+    let mut el = Bwbn::with_extra(*params, extras, Control::default_for())?;
     let mut s = Simulation {
         displacement: vec![],
         force: vec![],

@@ -135,7 +135,9 @@ fn element(hidden: &[EffectKind], values: &[(&str, f64)]) -> Result<Bwbn<f64>> {
         tol: 1e-10,
         max_substeps: 2000,
     };
-    Ok(Bwbn::new(params).with_control(tight))
+    Bwbn::new(params)
+        .with_control(tight)
+        .map_err(|e| anyhow!("synthetic model: {e}"))
 }
 
 /// A record of the base model with the `hidden` effects, along `path`, with

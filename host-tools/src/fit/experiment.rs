@@ -168,7 +168,7 @@ impl Experiment {
     ) -> Result<(), SimError> {
         match self.drive {
             Drive::Displacement => {
-                let mut el = Bwbn::with_extra(params, extra, control);
+                let mut el = Bwbn::with_extra(params, extra, control).map_err(SimError::Params)?;
                 for (i, &u) in self.input.iter().enumerate() {
                     let r = el
                         .set_trial(S::from_f64(u))

@@ -37,7 +37,8 @@ pub fn record() -> Experiment {
     };
     let mut osc = Sdof::from_physical(BwbnParams::plain(base), MASS, 0.05)
         .expect("valid truth")
-        .with_control(tight);
+        .with_control(tight)
+        .unwrap();
     let mut u = vec![0.0];
     for f in &force[1..] {
         u.push(osc.step(dt, f / MASS).expect("the truth simulates").u);

@@ -316,6 +316,20 @@ pub struct Effects<S> {
     pub asymmetry: Option<Asymmetry<S>>,
 }
 
+/// `Ok` unless `reads_energy` (an effect that is on reads the energy) and beta < 0
+/// ([`Rule::EnergyCanFallBelowZero`]). With beta = -0.25, gamma = 0.75 and n = 1 (Zu = 2),
+/// loading to u = 3 and back to 0 took the energy from 2.89 to -10.7, where the degradation
+/// and pinching functions were never checked (found by review).
+pub(crate) fn energy_cannot_fall_below_zero<S: Scalar>(
+    base: &BoucWen<S>,
+    reads_energy: bool,
+) -> Result<(), ParamError> {
+    if reads_energy && base.beta < S::ZERO {
+        return Err(ParamError::new("beta", Rule::EnergyCanFallBelowZero));
+    }
+    Ok(())
+}
+
 impl<S: Scalar> Effects<S> {
     /// Which effects are on.
     pub fn set(&self) -> EffectSet {
@@ -373,6 +387,7 @@ impl<S: Scalar> Effects<S> {
             let [a, b] = asymmetry::PARAMS.each_ref().map(&mut value);
             e.asymmetry = Some(Asymmetry::new(base, a, b)?);
         }
+        energy_cannot_fall_below_zero(base, e.reads_energy(&()))?;
         Ok(e)
     }
 

@@ -70,7 +70,7 @@ impl<S: Scalar> Run<S> {
     fn new(set: Set, params: BwbnParams<S>, control: Control<S>) -> Self {
         Run {
             set,
-            el: Bwbn::new(params).with_control(control),
+            el: Bwbn::new(params).with_control(control).unwrap(),
             last: (0.0, 0.0),
             work: 0.0,
             energy0: 0.0,

@@ -181,7 +181,7 @@ fn refused_steps_change_nothing<S: Scalar>() {
         max_substeps: 2,
         ..*el.control()
     };
-    let mut el = el.with_control(control);
+    let mut el = el.with_control(control).unwrap();
     assert!(
         el.set_trial(S::from_i32(4)) == Err(StepError::ToleranceNotMet),
         "{}: a step beyond the sub-step budget was not refused",

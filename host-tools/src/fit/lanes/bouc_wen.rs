@@ -225,7 +225,8 @@ mod tests {
         };
         let mut osc = Sdof::new(BwbnParams::plain(set.0), set.1)
             .unwrap()
-            .with_control(control);
+            .with_control(control)
+            .unwrap();
         osc.set_forcing(f[0]).unwrap();
         let mut out = vec![0.0];
         for i in 1..f.len() {

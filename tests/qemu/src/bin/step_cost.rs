@@ -32,7 +32,9 @@ pub extern "C" fn bench_stop() {
 }
 
 fn case<S: Scalar>(name: &str, set: Set, control: Control<S>) {
-    let mut el = Bwbn::<S>::new(black_box(set.params_q16())).with_control(control);
+    let mut el = Bwbn::<S>::new(black_box(set.params_q16()))
+        .with_control(control)
+        .unwrap();
     defmt::println!("case {}/{}/{}", set.name(), S::NAME, name);
     bench_start();
     for i in 1..POINTS {
@@ -47,7 +49,9 @@ fn case<S: Scalar>(name: &str, set: Set, control: Control<S>) {
 /// The same history with the markers around each step, one `case NAME/step`
 /// line per step: `step-cost.sh` reports the mean and the worst step.
 fn per_step<S: Scalar>(set: Set, label: &str, control: Control<S>) {
-    let mut el = Bwbn::<S>::new(black_box(set.params_q16())).with_control(control);
+    let mut el = Bwbn::<S>::new(black_box(set.params_q16()))
+        .with_control(control)
+        .unwrap();
     for i in 1..POINTS {
         defmt::println!("case {}/{}/{}", set.name(), S::NAME, label);
         bench_start();
