@@ -10,7 +10,7 @@ mod cli;
 #[allow(dead_code)]
 mod thesis_bw;
 
-use cli::{err, hyst, ok, stderr, tmp};
+use cli::{err, hyst, ok, stderr, tmp, write};
 use serde_json::Value;
 use thesis_bw::TRUTH;
 
@@ -315,4 +315,82 @@ fn auto_finds_the_benchmark_oscillator() {
             "{name}: {got} vs {truth}"
         );
     }
+}
+
+/// `--params` starts a fit from a parameter file. At a least-squares fit's own end the gradient
+/// is zero, so least squares from there stops at once on the same NRMSE; the file of a smaller
+/// model starts a larger one, whose added effect starts switched off, so its fit can only lower
+/// the error; and what cannot be a start is refused by name, not clamped into the range.
+#[test]
+fn a_fit_starts_from_a_parameter_file() {
+    let fit = tmp("start.json").display().to_string();
+    let first: Value = serde_json::from_slice(
+        &ok(hyst(&[
+            "fit", RECORD, "--model", "bw", "--mass", "500", "--method", "lsq", "--out", &fit,
+            "--json",
+        ]))
+        .stdout,
+    )
+    .unwrap();
+    let again = hyst(&[
+        "fit", RECORD, "--model", "bw", "--method", "lsq", "--params", &fit, "--json",
+    ]);
+    let again: Value = serde_json::from_slice(&ok(again).stdout).unwrap();
+    let (a, b) = (
+        first["nrmse"].as_f64().unwrap(),
+        again["nrmse"].as_f64().unwrap(),
+    );
+    assert!((a - b).abs() <= 1e-9 * a, "{a} then {b}");
+    assert!(again["simulations"].as_u64().unwrap() <= 3, "{again}");
+    // The mass came from the file.
+    assert_eq!(again["params"]["m"].as_f64(), Some(500.0));
+
+    let out = tmp("pinching.json").display().to_string();
+    let larger = ok(hyst(&[
+        "fit",
+        RECORD,
+        "--model",
+        "bw+pinching",
+        "--method",
+        "lsq",
+        "--params",
+        &fit,
+        "--out",
+        &out,
+        "--json",
+    ]));
+    assert!(
+        stderr(&larger).contains("has no zeta0, p, q, psi0, delta_psi, lambda"),
+        "{}",
+        stderr(&larger)
+    );
+    let larger: Value = serde_json::from_slice(&larger.stdout).unwrap();
+    assert!(larger["nrmse"].as_f64().unwrap() <= a, "{larger}");
+    let written: Value = serde_json::from_str(&std::fs::read_to_string(&out).unwrap()).unwrap();
+    assert_eq!(written["fit"]["start"].as_str(), Some(fit.as_str()));
+
+    let e = err(hyst(&[
+        "fit", RECORD, "--model", "bw", "--method", "nsga2", "--params", &fit,
+    ]));
+    assert!(e.contains("NSGA-II draws its population"), "{e}");
+    // The fit of bw+pinching does not start plain bw: its pinching would be dropped.
+    let e = err(hyst(&["fit", RECORD, "--model", "bw", "--params", &out]));
+    assert!(
+        e.contains("\" is not a parameter of model bw; model bw has k0"),
+        "{e}"
+    );
+    let mut far: Value = serde_json::from_str(&std::fs::read_to_string(&fit).unwrap()).unwrap();
+    far["k0"] = 600.0.into();
+    let far_path = write("far.json", &serde_json::to_string_pretty(&far).unwrap());
+    let e = err(hyst(&[
+        "fit", RECORD, "--model", "bw", "--params", &far_path,
+    ]));
+    assert!(
+        e.contains("k0 = 600 lies outside the search range") && e.contains("--fix k0=600"),
+        "{e}"
+    );
+    assert!(
+        e.contains(&format!("{far_path}:")),
+        "names the place in the file: {e}"
+    );
 }

@@ -9,7 +9,7 @@ use crate::fit::nsga2::{BinaryCrossover, Encoding, Nsga2};
 use crate::fit::objectives::Scores;
 use crate::fit::problem::Problem;
 use crate::fit::run::{self, Evolution, Method, Outcome, Progress};
-use crate::model::{to_json, ParamFile, PHM_MODEL};
+use crate::model::{to_json, ParamFile};
 use anyhow::{anyhow, bail, Context, Result};
 use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
@@ -29,9 +29,10 @@ pub struct FitArgs {
     /// (a twist/torque record; see `docs/phm.md`).
     #[arg(long, default_value = "bw")]
     pub model: ModelArg,
-    /// `phm-torsion` only: start from this PHM parameter file (default: a
-    /// primary curve idealised from the record's envelope and the thesis'
-    /// coefficients).
+    /// Start from this parameter file (a fit's `--out`, or written by hand; default: the
+    /// model's default start). It may hold a smaller model (a `bw` fit to start `bw+pinching`):
+    /// what it lacks starts at the default. For `phm-torsion`, a PHM parameter file (default: a
+    /// primary curve idealised from the record's envelope and the thesis' coefficients).
     #[arg(long)]
     pub params: Option<PathBuf>,
     /// Search method: lsq, homotopy (force-driven records), nsga2 or auto (least squares from
@@ -284,8 +285,82 @@ pub fn given_point(
     }
     let values: BTreeMap<&str, f64> = file.values.iter().map(|(k, v)| (k.as_str(), *v)).collect();
     let x = problem.par.normalise(&values);
-    match problem.try_predict(&x) {
-        Ok(p) => Ok((x, p)),
+    let prediction = simulated(&x, file, problem, data)?;
+    Ok((x, prediction))
+}
+
+/// The start of a fit from the parameter file `file` (`hyst fit --params`): the default start
+/// with the file's values in place of its own. The file may hold a smaller model (a `bw` fit to
+/// start `bw+pinching` from): what it lacks starts where the default start has it, the added
+/// effects switched off, and a note says which. A `--fix` replaces the file's value with a note.
+/// A value outside this record's search range is refused with the range, not clamped into it.
+pub fn start_point(file: &ParamFile, problem: &Problem, data: &Path) -> Result<Vec<f64>> {
+    file.build(problem.par.spec, problem.par.dynamic)?;
+    let par = &problem.par;
+    for (name, fixed) in &par.fixed {
+        if let Some(given) = file.values.get(*name).filter(|g| *g != fixed) {
+            eprintln!(
+                "note: --fix {name}={fixed} replaces {name} = {given} of {}",
+                file.at(&[name])
+            );
+        }
+    }
+    let default = par.default_start();
+    let mut values = par.physical(&default);
+    let names = par.names();
+    let mut missing = vec![];
+    for name in &names {
+        match file.values.get(*name) {
+            Some(&v) => {
+                values.insert(name, v);
+            }
+            None => missing.push(*name),
+        }
+    }
+    if !missing.is_empty() {
+        eprintln!(
+            "note: {} has no {}: {} where the default start has {} (an effect's parameters \
+             there switch it off)",
+            file.path.display(),
+            missing.join(", "),
+            if missing.len() == 1 {
+                "it starts"
+            } else {
+                "they start"
+            },
+            if missing.len() == 1 { "it" } else { "them" },
+        );
+    }
+    let x = par.normalise(&values);
+    let (lo, hi) = par.bounds();
+    for (i, name) in names.iter().enumerate() {
+        if !(lo[i]..=hi[i]).contains(&x[i]) {
+            let end = |v: f64| {
+                let mut at = x.clone();
+                at[i] = v;
+                par.physical(&at)[name]
+            };
+            bail!(
+                "{}: {name} = {} lies outside the search range of this record, {:.4e} to {:.4e} \
+                 (mm, kN; the range scales with the record's displacement and force): start inside \
+                 it, or hold the value with --fix {name}={}",
+                file.at(&[name]),
+                values[name],
+                end(lo[i]),
+                end(hi[i]),
+                values[name]
+            );
+        }
+    }
+    simulated(&x, file, problem, data)?;
+    Ok(x)
+}
+
+/// The prediction of `problem` at `x`, the values of `file`: a set that fails names the file
+/// and, for a failed step, the record's sample.
+fn simulated(x: &[f64], file: &ParamFile, problem: &Problem, data: &Path) -> Result<Prediction> {
+    match problem.try_predict(x) {
+        Ok(p) => Ok(p),
         // The file's values passed `build` above: what fails here is the set scaled to the
         // record (`n = 1000` overflowed beta's scale, and the file's finite beta was blamed as
         // "not finite": found by review).
@@ -447,17 +522,27 @@ pub fn run(args: FitArgs) -> Result<()> {
         ModelArg::Phm => return super::phm::fit(&args),
         ModelArg::Bwbn(spec) => spec,
     };
-    if args.params.is_some() {
-        bail!("--params (a start file) is for --model {PHM_MODEL}");
+    let start = args.params.as_deref().map(ParamFile::read).transpose()?;
+    let method: Method = args.method.parse()?;
+    if start.is_some() && method == Method::Nsga2 {
+        bail!(
+            "--params gives least squares and homotopy their start; NSGA-II draws its population \
+             over the whole search range and would not use it: use --method lsq, homotopy or auto"
+        );
     }
-    let loaded = load_timed(&args.data, &args.read, args.mass, args.forcing.between)?;
+    let mass = mass_of(args.mass, start.as_ref())?;
+    let between = args.forcing.or_file(start.as_ref())?;
+    let loaded = load_timed(&args.data, &args.read, mass, between)?;
     let monotone = loaded.monotone;
     let problem = Problem::new(model, loaded.exp, &args.fix)
         .with_context(|| args.data.display().to_string())?;
     if problem.dim() == 0 {
         bail!("every parameter of {model} is fixed: nothing to fit");
     }
-    let method: Method = args.method.parse()?;
+    let x0 = match &start {
+        Some(file) => start_point(file, &problem, &args.data)?,
+        None => problem.par.default_start(),
+    };
     let bar = Bar::new(&format!("fit {} ({method})", model), args.json);
     let t0 = Instant::now();
     if args.pareto.is_some() && method != Method::Nsga2 {
@@ -477,17 +562,14 @@ pub fn run(args: FitArgs) -> Result<()> {
             bail!("{flag} is a setting of NSGA-II, which method {method} does not run: use it with --method nsga2");
         }
     }
-    let outcome = run::fit_with(
-        &problem,
-        method,
-        &problem.par.default_start(),
-        &args.evolution(),
-        &bar,
-    )
-    .with_context(|| args.data.display().to_string())?;
+    let outcome = run::fit_with(&problem, method, &x0, &args.evolution(), &bar)
+        .with_context(|| args.data.display().to_string())?;
     bar.finish();
     let seconds = t0.elapsed().as_secs_f64();
-    let file = fit_json(&problem, &outcome, &args.data, seconds, monotone.as_ref())?;
+    let mut file = fit_json(&problem, &outcome, &args.data, seconds, monotone.as_ref())?;
+    if let Some(start) = &start {
+        file["fit"]["start"] = json!(start.path.display().to_string());
+    }
     if let Some(out) = &args.out {
         std::fs::write(out, serde_json::to_string_pretty(&file)? + "\n")
             .with_context(|| format!("{}: cannot write", out.display()))?;
