@@ -162,6 +162,25 @@ fn the_shared_synthetic_records_pass() {
         first / found.last().outcome.scores.nrmse >= 3.0,
         "s2: {ladder}"
     );
+    // Each rung's BIC change is that of its own step, recomputed from the two rungs' NRMSE and
+    // parameters at the sample size the effect was weighed at. On s2 the second rung showed
+    // -3987, the cost of removing that effect from the best pair, for a step of -1368.
+    for (i, rung) in found.rungs.iter().enumerate().skip(1) {
+        let before = &found.rungs[i - 1];
+        let weighed = found.steps[i - 1]
+            .suspects
+            .iter()
+            .find(|s| s.significant)
+            .expect("a rung was added for a significant suspect");
+        let n = weighed.n_eff;
+        let step = n * (rung.nrmse / before.nrmse).powi(2).ln()
+            + (rung.params - before.params) as f64 * n.ln();
+        let shown = rung.delta_bic.unwrap();
+        assert!(
+            (shown - step).abs() <= 1e-9 * step.abs(),
+            "s2 rung {i}: {shown} against {step}; {ladder}"
+        );
+    }
 }
 
 /// Pinching that grows over the test, as in RC columns: the hidden

@@ -62,6 +62,20 @@ fn a_parameter_stopped_by_its_search_range_is_reported() {
         "{stuck} then {nrmse}"
     );
     assert_eq!(fixed["at_bounds"], serde_json::json!([]));
+
+    // The diagnosis says it too: the misfit it leaves is what its suspects are asked to explain.
+    let d: Value = serde_json::from_slice(&ok(hyst(&["diagnose", &rec, "--json"])).stdout).unwrap();
+    let alpha = d["at_bounds"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|a| a["name"] == "alpha");
+    assert_eq!(alpha.expect("alpha")["end"], "upper", "{d}");
+    let text = String::from_utf8(ok(hyst(&["diagnose", &rec])).stdout).unwrap();
+    assert!(
+        text.contains("note: alpha stopped at the upper end of its search range"),
+        "{text}"
+    );
 }
 
 /// Inside the ranges nothing is reported.

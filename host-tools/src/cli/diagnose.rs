@@ -289,6 +289,7 @@ pub fn diagnosis_json(
         "nrmse": outcome.scores.nrmse,
         "parameters": problem.dim(),
         "params": outcome.values,
+        "at_bounds": outcome.at_bounds,
         "energy_error": d.energy_error,
         "places": d.places,
         "cycles": d.cycles,
@@ -314,6 +315,11 @@ pub fn print_diagnosis(
         problem.dim(),
         100.0 * d.energy_error
     );
+    // A range that stopped the fit leaves a misfit that the suspects then explain: a `k0` pinned
+    // below the truth made `discover` name pinching on plain Bouc-Wen data (found by review).
+    for at in outcome.at_bounds.iter().filter(|a| a.beyond_is_valid) {
+        outln!("  note: {at}; the suspects below judge the misfit this leaves.");
+    }
     if let Some(words) = beyond.noise_words() {
         outln!("the record:");
         outln!("  {words}");

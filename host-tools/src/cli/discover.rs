@@ -44,7 +44,7 @@ pub fn run(args: DiscoverArgs) -> Result<()> {
                 Some(s) => format!(
                     "-> adding {} (delta-BIC {:.0})",
                     s.effect.name(),
-                    s.delta_bic
+                    s.bic_of_adding()
                 ),
                 None => "-> nothing significant left".to_string(),
             }

@@ -46,6 +46,15 @@ use std::collections::BTreeMap;
 /// `delta_BIC` below which a suspect is significant.
 pub const SIGNIFICANT_BIC: f64 = -10.0;
 
+/// NRMSE below which the current model is taken to reproduce the record to the accuracy of its
+/// own simulation, and no effect is significant. The fits integrate to a tolerance of 1e-8
+/// (NRMSE 1e-9 to 1e-8 at the truth of noise-free records); what is left then is integration
+/// error, which the BIC would read as evidence: on a noise-free record with stiffness
+/// degradation hidden, pinching was added at a BIC change of -65 to a model already at NRMSE
+/// 5.6e-9 (found in review). Lab records carry noise far above this (0.01% of RMS would be
+/// 1e-4).
+pub const RESOLVED_NRMSE: f64 = 1e-6;
+
 /// An effect whose signature the residual lacks (see
 /// [`signature`]) still enters the comparison when the
 /// best model holding it has at most this fraction of the NRMSE of the best
@@ -73,7 +82,11 @@ pub struct Suspect {
     /// NRMSE after adding the effect and refitting (infinite if the refit
     /// failed).
     pub nrmse_with: f64,
-    /// BIC change from adding the effect (negative: better).
+    /// The BIC change that judged the effect (negative: better): for an effect of the best
+    /// model found, the change of adding it to that model's other effects; for one outside it,
+    /// the change of adding it to that model, or to the current one when the pair was not
+    /// fitted (the evidence says which). The change of adding it to the current model alone is
+    /// [`bic_of_adding`](Self::bic_of_adding).
     pub delta_bic: f64,
     /// Effective sample size used.
     pub n_eff: f64,
@@ -85,6 +98,16 @@ pub struct Suspect {
     pub evidence: String,
     /// The refitted model (problem and fit), for taking the next step.
     pub refit: Option<(Problem, Outcome)>,
+}
+
+impl Suspect {
+    /// The BIC change of adding this effect to the current model, at the sample size it was
+    /// weighed at: the step the ladder takes when it adds it. [`delta_bic`](Self::delta_bic) can
+    /// be another comparison (the cost of removing it from the best model found).
+    pub fn bic_of_adding(&self) -> f64 {
+        bic(self.nrmse_with.powi(2), self.added, self.n_eff)
+            - bic(self.nrmse.powi(2), 0, self.n_eff)
+    }
 }
 
 /// Settings of [`weigh`].
@@ -529,8 +552,9 @@ pub fn weigh(
             } else {
                 (f64::INFINITY, Relation::Unfitted)
             };
-            let leads = lead == Some(effect);
-            let significant = in_best && (delta < SIGNIFICANT_BIC || leads);
+            let resolved = outcome.scores.nrmse < RESOLVED_NRMSE;
+            let leads = lead == Some(effect) && !resolved;
+            let significant = !resolved && in_best && (delta < SIGNIFICANT_BIC || leads);
             let nrmse_with = single.cost.sqrt();
             let added = single.k.saturating_sub(base.k);
             let held: Vec<String> = options
@@ -581,6 +605,14 @@ pub fn weigh(
                 Relation::NoSignature => evidence.push_str(&format!(
                     "On its own it changes the BIC by {delta:+.0}, but the residual does not show its pattern: not significant."
                 )),
+            }
+            if resolved {
+                evidence.push_str(&format!(
+                    " The current model reproduces the record to {:.1e} of its RMS, below \
+                     {RESOLVED_NRMSE:.0e}, the accuracy of its own simulation: what is left is \
+                     not evidence of any effect.",
+                    outcome.scores.nrmse
+                ));
             }
             if let Some(s) = &signature {
                 evidence.push(' ');
