@@ -313,6 +313,52 @@ fn zu_to_the_n_beyond_the_arithmetic_is_refused() {
     assert!(make::<f64>(steep).is_ok() && make::<f32>(steep).is_ok());
 }
 
+/// The asymptote with the effects, `A0 / (nu0 nu_a (beta + gamma))`, must fit the arithmetic
+/// too: plain `Zu^n` of 8,192 passes in Q15.16, but `nu0 = 0.2` makes it 40,960 and `|z|^2`
+/// saturated at z = 181 on the way to Zu = 202 (every step after it refused), and an
+/// asymmetry's `1.99^-20` rounded to a strength factor of 0.
+#[test]
+fn the_asymptote_with_the_effects_must_fit_the_arithmetic() {
+    let gamma = -32760.0 / 65536.0;
+    let q16 = |set: EffectSet, over: &[(&str, f64)]| {
+        BwbnParams::<Fixed>::from_named(set, |n| {
+            over.iter()
+                .find(|(k, _)| *k == n)
+                .map(|(_, v)| Fixed::from_f64(*v))
+                .or(match n {
+                    "k0" => Some(Fixed::from_f64(0.1)),
+                    "alpha" => Some(Fixed::from_f64(0.05)),
+                    "n" => Some(Fixed::from_f64(2.0)),
+                    "beta" => Some(Fixed::from_f64(0.5)),
+                    "gamma" => Some(Fixed::from_f64(gamma)),
+                    _ => None,
+                })
+        })
+    };
+    assert!(q16(EffectSet::NONE, &[]).is_ok());
+    let e = q16(with(EffectKind::StrengthDegradation), &[("nu0", 0.2)]).unwrap_err();
+    assert_eq!((e.field, e.rule), ("nu0", Rule::DerivedOverflow));
+    let e = q16(with(EffectKind::ADegradation), &[("A0", 5.0)]).unwrap_err();
+    assert_eq!((e.field, e.rule), ("A0", Rule::DerivedOverflow));
+    // A strength that rises with the energy: nu0 = 1 holds, nu(limit) = 0.2 does not.
+    let e = q16(
+        with(EffectKind::StrengthDegradation),
+        &[("delta_nu", -0.8 / 100.0), ("energy_limit", 100.0)],
+    )
+    .unwrap_err();
+    assert_eq!((e.field, e.rule), ("delta_nu", Rule::DerivedOverflow));
+    let e = q16(
+        with(EffectKind::Asymmetry),
+        &[("n", 20.0), ("gamma", 0.5), ("asym_strength", 0.99)],
+    )
+    .unwrap_err();
+    assert_eq!((e.field, e.rule), ("asym_strength", Rule::DerivedOverflow));
+    // Moderate sets pass, and the floats hold all of these.
+    assert!(q16(with(EffectKind::StrengthDegradation), &[("nu0", 0.9)]).is_ok());
+    let nu0 = build(with(EffectKind::StrengthDegradation), &[("nu0", 1e-6)]);
+    assert!(nu0.is_ok(), "{nu0:?}");
+}
+
 #[test]
 fn errors_read_as_sentences() {
     let e = build(

@@ -81,8 +81,9 @@ pub enum Rule {
     /// A factor derived from this parameter and the others (for asymmetry the
     /// strength factors `(1 ± a)^-n`; for plain Bouc-Wen `Zu^n = 1/(beta +
     /// gamma)`, the value of `|z|^n` at the asymptote, and the stiffness
-    /// `k0 (1 + |beta - gamma| Zu^n)` of a reversal there) is too large for
-    /// the arithmetic.
+    /// `k0 (1 + |beta - gamma| Zu^n)` of a reversal there; with degradation
+    /// and asymmetry the asymptote `A / (nu nu_a (beta + gamma))`) is too
+    /// large for the arithmetic.
     DerivedOverflow,
     /// beta < 0 with an effect that reads the energy: unloading is then softer than loading
     /// (eq. 3.4 with `sgn(du z) = -1` gives `A - |z|^n (gamma - beta)`), and the energy
@@ -114,7 +115,7 @@ impl Rule {
                 "makes zeta1 exceed 1 within [0, energy_limit], so h(z) (eq. 3.9) turns negative"
             }
             Rule::DerivedOverflow => {
-                "makes a factor derived from it (for asymmetry (1 ± a)^-n, for plain Bouc-Wen Zu^n = 1/(beta + gamma) or the stiffness of a reversal at Zu) too large for the arithmetic"
+                "makes a factor derived from it (for asymmetry (1 ± a)^-n, for plain Bouc-Wen Zu^n = 1/(beta + gamma) or the stiffness of a reversal at Zu, with degradation and asymmetry Zu^n = A/(nu nu_a (beta + gamma))) too large for the arithmetic"
             }
             Rule::EnergyCanFallBelowZero => {
                 "is negative, which makes unloading softer than loading, so the energy read by degradation and pinching can fall below zero"

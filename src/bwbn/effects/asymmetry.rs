@@ -87,6 +87,12 @@ impl<S: Scalar> Asymmetry<S> {
     pub fn values(&self) -> [S; 2] {
         [self.a, self.b]
     }
+
+    /// The smaller of the two strength factors `(1 ± a)^-n`: the side whose `|z|^n` reaches
+    /// the highest asymptote.
+    pub(crate) fn weaker_side(&self) -> S {
+        self.nu_pos.min(self.nu_neg)
+    }
 }
 
 impl<S: Scalar> Effect<S> for Asymmetry<S> {

@@ -388,7 +388,55 @@ impl<S: Scalar> Effects<S> {
             e.asymmetry = Some(Asymmetry::new(base, a, b)?);
         }
         energy_cannot_fall_below_zero(base, e.reads_energy(&()))?;
+        e.asymptote_fits(base, energy_limit)?;
         Ok(e)
+    }
+
+    /// `Ok` if the arithmetic holds `|z|^n` at the asymptote with the effects, `A(e) /
+    /// (nu(e) nu_a (beta + gamma))` (eq. 3.12, with `nu_a` the asymmetry's weaker side), at zero
+    /// energy and, where a negative rate makes it grow with the energy, at `energy_limit`
+    /// (the ratio of two linear functions is largest at an end); otherwise
+    /// [`Rule::DerivedOverflow`] on the parameter whose factor took it out of range.
+    /// [`BoucWen::new`] checks plain Bouc-Wen's `1 / (beta + gamma)` only; in Q15.16
+    /// `nu0 = 0.2` took a set that passed (8,192) to 40,960, and `|z|^n` saturated on the way
+    /// there (found by review).
+    fn asymptote_fits(&self, base: &BoucWen<S>, energy_limit: S) -> Result<(), ParamError> {
+        let sum = base.beta + base.gamma;
+        if sum <= S::ZERO {
+            return Ok(());
+        }
+        let [a0, da] = self.a_degradation.map_or([S::ONE, S::ZERO], |x| x.values());
+        let [nu0, dnu] = self
+            .strength_degradation
+            .map_or([S::ONE, S::ZERO], |x| x.values());
+        let grows = da < S::ZERO || dnu < S::ZERO;
+        let ends = [
+            (S::ZERO, "A0", "nu0"),
+            (energy_limit, "delta_A", "delta_nu"),
+        ];
+        for (e, a_name, nu_name) in ends.into_iter().take(if grows { 2 } else { 1 }) {
+            let mut zu_n = S::ONE / sum;
+            let factors = [
+                (a_name, self.a_degradation.map(|_| a0 - da * e)),
+                (
+                    nu_name,
+                    self.strength_degradation.map(|_| S::ONE / (nu0 + dnu * e)),
+                ),
+                (
+                    "asym_strength",
+                    self.asymmetry.map(|x| S::ONE / x.weaker_side()),
+                ),
+            ];
+            for (name, factor) in factors {
+                if let Some(f) = factor {
+                    zu_n *= f;
+                    if !zu_n.is_finite() {
+                        return Err(ParamError::new(name, Rule::DerivedOverflow));
+                    }
+                }
+            }
+        }
+        Ok(())
     }
 
     /// Calls `f` with every parameter of the effects that are on.
