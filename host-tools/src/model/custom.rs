@@ -107,4 +107,10 @@ impl Effect<f64> for Extras {
     fn is_none(&self) -> bool {
         self.0.iter().all(|e| e.is_none())
     }
+    /// Whether one of the registered effects reads the energy: none does when there is none.
+    /// (The trait's default, `true`, made a plain `bw` set with beta < 0 count as reading it,
+    /// and be refused for it.)
+    fn reads_energy(&self) -> bool {
+        self.0.iter().any(|e| e.reads_energy())
+    }
 }
