@@ -373,12 +373,17 @@ fn a_fit_starts_from_a_parameter_file() {
         "fit", RECORD, "--model", "bw", "--method", "nsga2", "--params", &fit,
     ]));
     assert!(e.contains("NSGA-II draws its population"), "{e}");
-    // The fit of bw+pinching does not start plain bw: its pinching would be dropped.
-    let e = err(hyst(&["fit", RECORD, "--model", "bw", "--params", &out]));
-    assert!(
-        e.contains("\" is not a parameter of model bw; model bw has k0"),
-        "{e}"
-    );
+    // The fit of bw+pinching does not start plain bw (its pinching would be dropped): the
+    // model to give is named, also when --model is left at its default.
+    for args in [vec!["--model", "bw"], vec![]] {
+        let e = err(hyst(
+            &[&["fit", RECORD, "--params", &out][..], &args].concat(),
+        ));
+        assert!(
+            e.contains("which --model bw lacks: give --model bw+pinching"),
+            "{e}"
+        );
+    }
     let mut far: Value = serde_json::from_str(&std::fs::read_to_string(&fit).unwrap()).unwrap();
     far["k0"] = 600.0.into();
     let far_path = write("far.json", &serde_json::to_string_pretty(&far).unwrap());
@@ -392,5 +397,30 @@ fn a_fit_starts_from_a_parameter_file() {
     assert!(
         e.contains(&format!("{far_path}:")),
         "names the place in the file: {e}"
+    );
+    // No damping is made up for a force-driven start.
+    let mut no_xi: Value = serde_json::from_str(&std::fs::read_to_string(&fit).unwrap()).unwrap();
+    no_xi.as_object_mut().unwrap().remove("xi");
+    let no_xi = write("no-xi.json", &serde_json::to_string_pretty(&no_xi).unwrap());
+    let e = err(hyst(&["fit", RECORD, "--params", &no_xi]));
+    assert!(e.contains("no `xi`") && e.contains("--fix xi="), "{e}");
+    // A --fix that breaks the file's set is named as the cause: the fit has gamma < 0, and
+    // beta + gamma < 0 leaves pinching without its Zu (legal plain Bouc-Wen).
+    let gamma = first["params"]["gamma"].as_f64().unwrap();
+    assert!(gamma < 0.0, "{first}");
+    let fix = format!("beta={}", -gamma / 2.0);
+    let e = err(hyst(&[
+        "fit",
+        RECORD,
+        "--model",
+        "bw+pinching",
+        "--params",
+        &fit,
+        "--fix",
+        &fix,
+    ]));
+    assert!(
+        e.contains(&format!("with --fix {fix}: not a valid set")) && e.contains("Zu"),
+        "{e}"
     );
 }

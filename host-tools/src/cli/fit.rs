@@ -291,12 +291,33 @@ pub fn given_point(
 
 /// The start of a fit from the parameter file `file` (`hyst fit --params`): the default start
 /// with the file's values in place of its own. The file may hold a smaller model (a `bw` fit to
-/// start `bw+pinching` from): what it lacks starts where the default start has it, the added
-/// effects switched off, and a note says which. A `--fix` replaces the file's value with a note.
-/// A value outside this record's search range is refused with the range, not clamped into it.
+/// start `bw+pinching` from): the parameters of effects it lacks start where the default start
+/// has them (switched off), and a note says which. A force-driven fit needs the file's `xi`
+/// unless it is fixed, as [`given_point`] does: no damping is made up. A `--fix` replaces the
+/// file's value with a note. A value outside this record's search range is refused with the
+/// range, not clamped into it; one beyond an end by no more than 1e-9 of the range's width (a
+/// fit stopped at that end, written out and scaled back: one unit in the last place on about a
+/// sixth of records, found by review) starts at the end.
 pub fn start_point(file: &ParamFile, problem: &Problem, data: &Path) -> Result<Vec<f64>> {
-    file.build(problem.par.spec, problem.par.dynamic)?;
     let par = &problem.par;
+    if let Some(model) = file.model.filter(|m| *m != par.spec) {
+        if file.build(par.spec, par.dynamic).is_err() {
+            bail!(
+                "{} holds parameters of model {model}, which --model {} lacks: give --model {model} \
+                 (or a model with more effects)",
+                file.path.display(),
+                par.spec
+            );
+        }
+    }
+    file.build(par.spec, par.dynamic)?;
+    if par.names().contains(&"xi") && !file.values.contains_key("xi") {
+        bail!(
+            "{}: no `xi` (viscous damping ratio): a force-driven fit starts from the parameters of \
+             a force-driven fit, or give the damping with --fix xi=VALUE",
+            file.path.display()
+        );
+    }
     for (name, fixed) in &par.fixed {
         if let Some(given) = file.values.get(*name).filter(|g| *g != fixed) {
             eprintln!(
@@ -319,8 +340,7 @@ pub fn start_point(file: &ParamFile, problem: &Problem, data: &Path) -> Result<V
     }
     if !missing.is_empty() {
         eprintln!(
-            "note: {} has no {}: {} where the default start has {} (an effect's parameters \
-             there switch it off)",
+            "note: {} has no {}: {} switched off, where the default start has {}",
             file.path.display(),
             missing.join(", "),
             if missing.len() == 1 {
@@ -331,10 +351,11 @@ pub fn start_point(file: &ParamFile, problem: &Problem, data: &Path) -> Result<V
             if missing.len() == 1 { "it" } else { "them" },
         );
     }
-    let x = par.normalise(&values);
+    let mut x = par.normalise(&values);
     let (lo, hi) = par.bounds();
     for (i, name) in names.iter().enumerate() {
-        if !(lo[i]..=hi[i]).contains(&x[i]) {
+        let slack = 1e-9 * (hi[i] - lo[i]);
+        if !(lo[i] - slack..=hi[i] + slack).contains(&x[i]) {
             let end = |v: f64| {
                 let mut at = x.clone();
                 at[i] = v;
@@ -349,6 +370,19 @@ pub fn start_point(file: &ParamFile, problem: &Problem, data: &Path) -> Result<V
                 end(lo[i]),
                 end(hi[i]),
                 values[name]
+            );
+        }
+        x[i] = x[i].clamp(lo[i], hi[i]);
+    }
+    // The file's set with the `--fix` values: a fix that breaks it is named as the cause, not
+    // the record's scales (found by review: `--fix beta=1` against the file's gamma = -1).
+    if !par.fixed.is_empty() {
+        if let Err(e) = par.build(&x) {
+            let fixes: Vec<String> = par.fixed.iter().map(|(k, v)| format!("{k}={v}")).collect();
+            bail!(
+                "{} with --fix {}: not a valid set: {e}",
+                file.path.display(),
+                fixes.join(" --fix ")
             );
         }
     }
@@ -663,4 +697,41 @@ pub fn run(args: FitArgs) -> Result<()> {
         }
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::model::ModelSpec;
+
+    /// A start at an end of k0's range, nudged beyond it by far less than 1e-9 of the range's
+    /// width (as a stopped fit written out and scaled back lands), starts at that end; a value
+    /// well beyond is refused with the range.
+    #[test]
+    fn a_start_at_an_end_of_its_range_is_taken_and_one_beyond_it_refused() {
+        let record = PathBuf::from(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../benches/baselines/bw_synthetic.csv"
+        ));
+        let exp = load(&record, &ReadArgs::default(), Some(500.0), None).unwrap();
+        let problem = Problem::new(ModelSpec::BW, exp, &[]).unwrap();
+        let (_, hi) = problem.par.bounds();
+        let k = problem.par.names().iter().position(|n| *n == "k0").unwrap();
+        let mut x = problem.par.default_start();
+        x[k] = hi[k];
+        let end = problem.par.physical(&x)["k0"];
+        let file = |k0: f64| {
+            let text = format!(
+                r#"{{"model": "bw", "k0": {k0:?}, "alpha": 0.2, "n": 1.5, "beta": 0.5, "gamma": 0.5, "xi": 0.05}}"#
+            );
+            ParamFile::parse(Path::new("start.json"), &text).unwrap()
+        };
+        let at = start_point(&file(end * (1.0 + 1e-13)), &problem, &record).unwrap();
+        assert_eq!(at[k], hi[k]);
+        let e = start_point(&file(end * (1.0 + 1e-6)), &problem, &record).unwrap_err();
+        assert!(
+            e.to_string().contains("lies outside the search range"),
+            "{e}"
+        );
+    }
 }

@@ -123,13 +123,14 @@ fn rms(x: &[f64]) -> f64 {
 /// Where fewer than three samples lie there (a coarse record), the estimate is
 /// the geometric mean of the slope over the branch's first two samples and the
 /// secant at the peak force: the search range of `k0` (0.3 to 3 times this)
-/// then holds both. The secant alone was used before, and at 60 samples a cycle
-/// of four yield displacements it was a quarter of the initial stiffness: the
-/// range ended below the truth, pinching took up the misfit, and `discover`
-/// named it on plain Bouc-Wen data (found by review). The two-sample slope
-/// alone (10.1 kN/mm on Kunnath's A3, SPD 347, against a secant of 2.8) put the
-/// range above the `bw` fit's 2.2, which is lower than either: a cracked RC
-/// column's single `k0` is a compromise, not the first slope.
+/// spans both when they are within a factor of 9 of each other, and lies
+/// between them otherwise. The secant alone was used before, and at 60 samples
+/// a cycle of four yield displacements it was a quarter of the initial
+/// stiffness: the range ended below the truth, pinching took up the misfit, and
+/// `discover` named it on plain Bouc-Wen data (found by review). The two-sample
+/// slope alone (10.1 kN/mm on Kunnath's A3, SPD 347, where the secant is 1.03)
+/// put the range's bottom at 3.0, above the `bw` fit's `k0` of 2.2: a cracked
+/// RC column's single `k0` is a compromise, not its first slope.
 pub fn initial_stiffness(exp: &Experiment) -> f64 {
     let (u, f) = (exp.displacement(), exp.force());
     if let Drive::Force { .. } = exp.drive {
