@@ -76,6 +76,20 @@ fn a_parameter_stopped_by_its_search_range_is_reported() {
         text.contains("note: alpha stopped at the upper end of its search range"),
         "{text}"
     );
+    // Given parameters were not searched: alpha = 0.7 beyond the range is no stop.
+    let truth = tmp("alpha-0.7.json");
+    std::fs::write(
+        &truth,
+        r#"{"model": "bw", "k0": 6, "alpha": 0.7, "n": 1.2, "beta": 2, "gamma": -1}"#,
+    )
+    .unwrap();
+    let truth = truth.display().to_string();
+    let args = ["diagnose", &rec, "--params", &truth, "--json"];
+    let d: Value = serde_json::from_slice(&ok(hyst(&args)).stdout).unwrap();
+    assert_eq!(d["at_bounds"], serde_json::json!([]), "{d}");
+    assert!(d["nrmse"].as_f64().unwrap() < 1e-6, "{d}");
+    let text = String::from_utf8(ok(hyst(&args[..4])).stdout).unwrap();
+    assert!(!text.contains("stopped at"), "{text}");
 }
 
 /// Inside the ranges nothing is reported.
