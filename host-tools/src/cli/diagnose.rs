@@ -11,7 +11,6 @@ use crate::discover::suspects::default_candidates;
 use crate::discover::{page, weigh, Diagnosis, Suspect, WeighOptions};
 use crate::fit::experiment::Drive;
 use crate::fit::input_noise::Monotone;
-use crate::fit::parametrization::AtBound;
 use crate::fit::problem::Problem;
 use crate::fit::run::{self, Method, Outcome, Progress};
 use crate::model::{EffectRef, ModelSpec, ParamFile};
@@ -115,9 +114,6 @@ impl Common {
     }
 }
 
-/// The method of an outcome evaluated at given parameters (`--params`), not searched.
-const GIVEN: &str = "given";
-
 /// Arguments of `hyst diagnose`.
 #[derive(Debug, Args)]
 pub struct DiagnoseArgs {
@@ -177,7 +173,7 @@ pub fn initial_fit(common: &Common, params: Option<&Path>, bar: &Bar) -> Result<
         Some(file) => {
             file.spec(Some(common.model))?;
             let (x, _) = given_point(&file, &problem, &common.data)?;
-            run::evaluate_at(&problem, &x, GIVEN)?
+            run::evaluate_at(&problem, &x, "given")?
         }
         None => run::fit(&problem, Method::Auto, &problem.par.default_start(), bar)
             .with_context(|| common.data.display().to_string())?,
@@ -280,11 +276,6 @@ pub fn suspects_json(suspects: &[Suspect]) -> Value {
     )
 }
 
-/// The parameters a search stopped at an end of their range: none for given parameters.
-fn searched_bounds(outcome: &Outcome) -> impl Iterator<Item = &AtBound> {
-    outcome.at_bounds.iter().filter(|_| outcome.method != GIVEN)
-}
-
 /// The diagnosis as JSON.
 pub fn diagnosis_json(
     problem: &Problem,
@@ -298,7 +289,7 @@ pub fn diagnosis_json(
         "nrmse": outcome.scores.nrmse,
         "parameters": problem.dim(),
         "params": outcome.values,
-        "at_bounds": searched_bounds(outcome).collect::<Vec<_>>(),
+        "at_bounds": outcome.at_bounds,
         "energy_error": d.energy_error,
         "places": d.places,
         "cycles": d.cycles,
@@ -326,8 +317,7 @@ pub fn print_diagnosis(
     );
     // A range that stopped the fit leaves a misfit that the suspects then explain: a `k0` pinned
     // below the truth made `discover` name pinching on plain Bouc-Wen data (found by review).
-    // Given parameters were not searched, so no range stopped them.
-    for at in searched_bounds(outcome).filter(|a| a.beyond_is_valid) {
+    for at in outcome.at_bounds.iter().filter(|a| a.beyond_is_valid) {
         outln!("  note: {at}; the suspects below judge the misfit this leaves.");
     }
     if let Some(words) = beyond.noise_words() {

@@ -300,17 +300,17 @@ pub fn given_point(
 /// sixth of records, found by review) starts at the end.
 pub fn start_point(file: &ParamFile, problem: &Problem, data: &Path) -> Result<Vec<f64>> {
     let par = &problem.par;
-    if let Some(model) = file.model.filter(|m| *m != par.spec) {
-        if file.build(par.spec, par.dynamic).is_err() {
-            bail!(
+    if let Err(e) = file.build(par.spec, par.dynamic) {
+        match file.model.filter(|m| *m != par.spec) {
+            Some(model) => bail!(
                 "{} holds parameters of model {model}, which --model {} lacks: give --model {model} \
                  (or a model with more effects)",
                 file.path.display(),
                 par.spec
-            );
+            ),
+            None => return Err(e),
         }
     }
-    file.build(par.spec, par.dynamic)?;
     if par.names().contains(&"xi") && !file.values.contains_key("xi") {
         bail!(
             "{}: no `xi` (viscous damping ratio): a force-driven fit starts from the parameters of \

@@ -124,7 +124,8 @@ pub struct Outcome {
     pub identifiability: Identifiability,
     /// Model simulations used.
     pub evaluations: usize,
-    /// The fitted parameters that stopped at an end of their search range.
+    /// The fitted parameters that stopped at an end of their search range (none for
+    /// [`evaluate_at`], where no search ran).
     pub at_bounds: Vec<AtBound>,
     /// For an evolutionary search: the fixed-step model it simulated with, or why it simulated
     /// with the core instead.
@@ -498,11 +499,15 @@ pub fn finish(
 }
 
 /// The outcome at a given point `x` (a parameter file's values): scores and
-/// identifiability without fitting.
+/// identifiability without fitting. No search ran, so no range stopped one: given values at or
+/// beyond an end are not reported as stops (`diagnose --params` printed one, found by review).
 pub fn evaluate_at(problem: &Problem, x: &[f64], method: &str) -> Result<Outcome> {
     let sol = solution_at(problem, x).ok_or_else(|| {
         anyhow!("the given parameters, or ones next to them, cannot be simulated on this record")
     })?;
     let evaluations = sol.evaluations;
-    finish(problem, method, sol, evaluations)
+    Ok(Outcome {
+        at_bounds: vec![],
+        ..finish(problem, method, sol, evaluations)?
+    })
 }
