@@ -5,7 +5,7 @@
 //! read the same way by `fit`, `diagnose`, `discover`, `sensitivity` and
 //! `simulate`.
 
-use crate::data::{ColumnRef, ReadOptions, Role, Unit};
+use crate::data::{Channel, ColumnRef, ReadOptions, Role, Unit};
 use anyhow::{anyhow, bail, Result};
 use clap::Args;
 
@@ -56,6 +56,26 @@ fn parse_column_ref(text: &str) -> Result<ColumnRef> {
     Ok(c.column)
 }
 
+/// Parses `CHANNEL=VALUE` for `--subtract`: `displacement=0.5`, `force=-0.7`.
+pub fn parse_subtract(text: &str) -> Result<(Channel, f64)> {
+    let (name, value) = text
+        .split_once('=')
+        .ok_or_else(|| anyhow!("`{text}`: expected displacement=VALUE or force=VALUE"))?;
+    let channel = match name.trim() {
+        "displacement" => Channel::Displacement,
+        "force" => Channel::Force,
+        other => bail!("`{text}`: expected displacement or force before `=`, found `{other}`"),
+    };
+    let value: f64 = value
+        .trim()
+        .parse()
+        .map_err(|_| anyhow!("`{text}`: `{value}` is not a number"))?;
+    if !value.is_finite() {
+        bail!("`{text}`: the value is not a finite number");
+    }
+    Ok((channel, value))
+}
+
 /// How to read the record (CSV; a JSON layout fixes its columns).
 #[derive(Clone, Debug, Default, Args)]
 pub struct ReadArgs {
@@ -84,6 +104,12 @@ pub struct ReadArgs {
     /// monotone between the test's reversals, with a note).
     #[arg(long)]
     pub raw_displacement: bool,
+    /// Take a constant off every sample of a channel, in mm or kN (deg or
+    /// kN m for a torsion record): a known zero offset of an instrument, as
+    /// `hyst diagnose` names one, e.g. `--subtract force=0.73`. Once per
+    /// channel.
+    #[arg(long, value_name = "CHANNEL=VALUE", value_parser = parse_subtract)]
+    pub subtract: Vec<(Channel, f64)>,
 }
 
 impl ReadArgs {
@@ -107,6 +133,9 @@ impl ReadArgs {
         }
         for c in &self.ignore {
             opts = opts.role(c.clone(), Role::Ignore);
+        }
+        for &(channel, value) in &self.subtract {
+            opts = opts.subtract(channel, value);
         }
         opts
     }

@@ -73,6 +73,9 @@ pub struct ReadOptions {
     /// Skip this many leading data rows (e.g. a point count written as a data
     /// row); each skipped row is reported as a notice.
     pub skip_rows: usize,
+    /// Constants taken off a channel once it is read (a known zero offset of
+    /// an instrument; [`Record::subtract`]), each reported as a notice.
+    pub subtract: Vec<(Channel, f64)>,
 }
 
 impl ReadOptions {
@@ -103,6 +106,12 @@ impl ReadOptions {
     /// Skips leading data rows.
     pub fn skip_rows(mut self, rows: usize) -> Self {
         self.skip_rows = rows;
+        self
+    }
+
+    /// Takes `value` off every sample of `channel` once it is read.
+    pub fn subtract(mut self, channel: Channel, value: f64) -> Self {
+        self.subtract.push((channel, value));
         self
     }
 
@@ -223,8 +232,18 @@ pub fn read_str(
     format: Format,
     options: &ReadOptions,
 ) -> Result<Record, DataError> {
-    match format {
+    let mut record = match format {
         Format::Csv => csv::parse(name.as_ref(), text, options),
         Format::Json => json::parse(name.as_ref(), text, options),
+    }?;
+    for (i, &(channel, value)) in options.subtract.iter().enumerate() {
+        if options.subtract[..i].iter().any(|(c, _)| *c == channel) {
+            return Err(DataError::file(
+                name.as_ref(),
+                format!("expected one offset to subtract from the {channel}, found two"),
+            ));
+        }
+        record.subtract(channel, value)?;
     }
+    Ok(record)
 }

@@ -137,6 +137,15 @@ pub enum Notice {
         /// The column.
         column: String,
     },
+    /// A constant was taken off every sample of a column (read options).
+    Subtracted {
+        /// The column.
+        column: String,
+        /// The constant, in `unit`.
+        value: f64,
+        /// The canonical unit the constant is in.
+        unit: Unit,
+    },
     /// The time base was built from a sample rate: sample `k` is at `k / rate`.
     TimeFromSampleRate {
         /// The rate in Hz.
@@ -197,6 +206,14 @@ impl fmt::Display for Notice {
             Notice::StepColumn { column } => write!(
                 f,
                 "column '{column}' checked to increase and used only as the row order"
+            ),
+            Notice::Subtracted {
+                column,
+                value,
+                unit,
+            } => write!(
+                f,
+                "column '{column}': {value} {unit} subtracted from every sample (read options)"
             ),
             Notice::TimeFromSampleRate { hz, replaced } => {
                 write!(f, "time built from the sample rate {hz} Hz (t = k / {hz})")?;
@@ -437,6 +454,48 @@ impl Record {
     /// The output signal, if the record has one.
     pub fn output(&self) -> Option<&[f64]> {
         self.series(self.input.other()).map(|s| s.values.as_slice())
+    }
+
+    /// Takes `value` (in the channel's canonical unit: mm or kN, deg or kN m
+    /// for a torsion record) off every sample of `channel`: a known zero
+    /// offset of an instrument. Said in a notice; an error if the record has
+    /// no such channel or `value` is not finite.
+    ///
+    /// ```
+    /// use hyst::data::{Channel, Record};
+    /// let mut r = Record::from_history("ramp", vec![0.5, 1.0, 1.5], None).unwrap();
+    /// r.subtract(Channel::Displacement, 0.5).unwrap();
+    /// assert_eq!(r.input(), &[0.0, 0.5, 1.0]);
+    /// assert!(r.subtract(Channel::Force, 1.0).is_err());
+    /// ```
+    pub fn subtract(&mut self, channel: Channel, value: f64) -> Result<(), DataError> {
+        let source = self.source.clone();
+        let series = match channel {
+            Channel::Displacement => self.displacement.as_mut(),
+            Channel::Force => self.force.as_mut(),
+        };
+        let Some(series) = series else {
+            return Err(DataError::file(
+                &source,
+                format!("cannot subtract {value} from the {channel}: the record has no {channel}"),
+            ));
+        };
+        if !value.is_finite() {
+            return Err(DataError::file(
+                &source,
+                format!("expected a finite offset to subtract from the {channel}, found {value}"),
+            ));
+        }
+        series.values.iter_mut().for_each(|v| *v -= value);
+        let unit = series.unit.quantity().canonical();
+        let column = series.name.clone();
+        self.check()?;
+        self.notices.push(Notice::Subtracted {
+            column,
+            value,
+            unit,
+        });
+        Ok(())
     }
 
     /// The record with another input channel (which must be present).
