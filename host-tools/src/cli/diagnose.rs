@@ -5,6 +5,7 @@
 use super::columns::ReadArgs;
 use super::fit::{given_point, load_timed, mass_of, parse_fix, Bar, Loaded};
 use super::ForcingArgs;
+use crate::discover::offset::{self, OffsetCheck};
 use crate::discover::rate::{self, RateCheck};
 use crate::discover::slip::{self, SlipCheck};
 use crate::discover::suspects::default_candidates;
@@ -195,6 +196,11 @@ pub struct Beyond {
     pub rate: Option<RateCheck>,
     /// Slip or a gap ([`slip::check`]): displacement-driven records.
     pub slip: Option<SlipCheck>,
+    /// A force that does not read zero at zero ([`offset::force`]):
+    /// displacement-driven records.
+    pub force_offset: Option<OffsetCheck>,
+    /// A record that starts away from zero displacement ([`offset::start`]).
+    pub start_offset: Option<OffsetCheck>,
     /// Noise in the displacement, made monotone between the test's reversals
     /// ([`crate::fit::input_noise::monotone`]): the loader decided, this
     /// reports it.
@@ -202,22 +208,29 @@ pub struct Beyond {
 }
 
 impl Beyond {
-    /// Both checks on the fit `outcome` of `problem`, lined up as `d`, with
-    /// what the loader did to a noisy displacement.
+    /// The checks on the fit `outcome` of `problem`, lined up as `d`, its
+    /// candidate effects weighed as `suspects`, with what the loader did to a
+    /// noisy displacement.
     pub fn check(
         problem: &Problem,
         outcome: &Outcome,
         d: &Diagnosis,
+        suspects: &[Suspect],
         time: Option<&[f64]>,
         monotone: Option<Monotone>,
     ) -> Self {
-        let rate = match (&problem.exp.drive, time) {
-            (Drive::Displacement, Some(t)) => rate::check(d, t, outcome.scores.nrmse),
+        let displacement = problem.exp.drive == Drive::Displacement;
+        let rate = match time {
+            Some(t) if displacement => rate::check(d, t, outcome.scores.nrmse),
             _ => None,
         };
         Beyond {
             rate,
             slip: slip::check(d, &problem.exp.drive),
+            force_offset: displacement
+                .then(|| offset::force(d, outcome.scores.nrmse, suspects))
+                .flatten(),
+            start_offset: offset::start(problem, outcome, d),
             displacement_noise: monotone,
         }
     }
@@ -240,7 +253,19 @@ impl Beyond {
             .slip
             .as_ref()
             .map(|s| ("slip or gap", s.significant, s.evidence.as_str()));
-        rate.into_iter().chain(slip).collect()
+        let force = self
+            .force_offset
+            .as_ref()
+            .map(|o| ("force offset", o.significant, o.evidence.as_str()));
+        let start = self
+            .start_offset
+            .as_ref()
+            .map(|o| ("start away from rest", o.significant, o.evidence.as_str()));
+        rate.into_iter()
+            .chain(slip)
+            .chain(force)
+            .chain(start)
+            .collect()
     }
 
     /// Adds the checks to an HTML report.
@@ -296,6 +321,8 @@ pub fn diagnosis_json(
         "suspects": suspects_json(suspects),
         "rate_dependence": beyond.rate,
         "slip": beyond.slip,
+        "force_offset": beyond.force_offset,
+        "start_offset": beyond.start_offset,
         "displacement_noise": beyond.displacement_noise,
     })
 }
@@ -367,7 +394,7 @@ pub fn run(args: DiagnoseArgs) -> Result<()> {
     let d = Diagnosis::new(&problem, &outcome)?;
     bar.status("weighing the candidate effects");
     let suspects = weigh(&problem, &outcome, &d, &options);
-    let beyond = Beyond::check(&problem, &outcome, &d, time.as_deref(), monotone);
+    let beyond = Beyond::check(&problem, &outcome, &d, &suspects, time.as_deref(), monotone);
     bar.finish();
     if let Some(path) = &args.common.report {
         let mut report = Report::new(&format!("Diagnosis of {}", args.common.data.display()));

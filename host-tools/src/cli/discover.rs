@@ -4,8 +4,8 @@
 
 use super::diagnose::{diagnosis_json, initial_fit, print_diagnosis, Beyond, Common, Initial};
 use super::fit::Bar;
-use crate::discover::slip;
 use crate::discover::{discover, page};
+use crate::discover::{offset, slip};
 use crate::fit::run::Progress;
 use anyhow::{Context, Result};
 use clap::Args;
@@ -55,10 +55,12 @@ pub fn run(args: DiscoverArgs) -> Result<()> {
         &last.problem,
         &last.outcome,
         &last.diagnosis,
+        &last.suspects,
         time.as_deref(),
         monotone,
     );
     beyond.slip = slip::of_ladder(&discovery, beyond.slip);
+    (beyond.force_offset, beyond.start_offset) = offset::of_ladder(&discovery);
     bar.finish();
     if let Some(path) = &args.plot {
         let fig = page::ladder_figure(&discovery.rungs)?;

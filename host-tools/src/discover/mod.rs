@@ -13,6 +13,9 @@
 //!   an effect it has.
 //! * [`slip`]: slip or a gap, a plateau of zero force on reversal, which no
 //!   effect of the library models either and which pinching only resembles.
+//! * [`offset`]: instruments that do not read zero at zero (a force offset, a
+//!   record that starts away from zero displacement), which asymmetry and
+//!   pinching can stand in for.
 //! * [`ladder`]: the loop, adding the strongest significant effect until none
 //!   is left.
 //! * [`synthetic`]: lab-like records with hidden effects for testing all of
@@ -20,6 +23,7 @@
 
 pub mod diagnosis;
 pub mod ladder;
+pub mod offset;
 pub mod page;
 pub mod rate;
 pub mod signature;
