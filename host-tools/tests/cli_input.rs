@@ -1344,3 +1344,67 @@ fn subtract_takes_a_zero_offset_off_a_channel_and_says_so() {
     );
     assert!(taken_off < 2.0 * clean_nrmse, "{taken_off} {clean_nrmse}");
 }
+
+/// `--negate` flips a channel's sign as the record is read; a record that gives out energy (its
+/// force flipped) is named in a note by the fitting verbs, and fitted with `--negate force` it is
+/// the record as measured, to the last bit.
+#[test]
+fn negate_flips_a_channel_and_a_record_that_gives_out_energy_is_named() {
+    let history = write("negated.csv", "displacement (mm)\n0.5\n1.0\n");
+    let params = write("bw.json", BW);
+    let out = ok(hyst(&[
+        "simulate",
+        &history,
+        "--params",
+        &params,
+        "--negate",
+        "displacement",
+    ]));
+    let text = String::from_utf8(out.stdout.clone()).unwrap();
+    assert!(text.lines().nth(1).unwrap().starts_with("-0.5,"), "{text}");
+    assert!(cli::stderr(&out).contains("the sign of every sample flipped"));
+    let e = err(hyst(&[
+        "simulate", &history, "--params", &params, "--negate", "force",
+    ]));
+    assert!(e.contains("cannot negate the force"), "{e}");
+    let e = err(hyst(&[
+        "simulate",
+        &history,
+        "--params",
+        &params,
+        "--negate",
+        "displacement",
+        "--negate",
+        "displacement",
+    ]));
+    assert!(e.contains("negated once"), "{e}");
+
+    let clean = column_record();
+    let flipped: String = clean
+        .lines()
+        .enumerate()
+        .map(|(i, l)| match (i, l.split_once(',')) {
+            (0, _) | (_, None) => format!("{l}\n"),
+            (_, Some((u, f))) => format!("{u},{}\n", -f.parse::<f64>().unwrap()),
+        })
+        .collect();
+    let fit = |path: &str, extra: &[&str]| {
+        let mut args = vec!["fit", path, "--method", "lsq", "--json"];
+        args.extend_from_slice(extra);
+        let out = ok(hyst(&args));
+        let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+        (v["nrmse"].as_f64().unwrap(), cli::stderr(&out))
+    };
+    let (clean_nrmse, note) = fit(&write("clean.csv", &clean), &[]);
+    assert!(!note.contains("gives out energy"), "{note}");
+    let path = write("flipped.csv", &flipped);
+    let (bad, note) = fit(&path, &[]);
+    assert!(
+        note.contains("gives out energy") && note.contains("--negate force"),
+        "{note}"
+    );
+    assert!(bad > 0.5, "{bad}");
+    let (fixed, note) = fit(&path, &["--negate", "force"]);
+    assert!(!note.contains("gives out energy"), "{note}");
+    assert_eq!(fixed, clean_nrmse);
+}

@@ -56,16 +56,21 @@ fn parse_column_ref(text: &str) -> Result<ColumnRef> {
     Ok(c.column)
 }
 
+/// Parses `displacement` or `force` for `--negate`.
+pub fn parse_channel(text: &str) -> Result<Channel> {
+    match text.trim() {
+        "displacement" => Ok(Channel::Displacement),
+        "force" => Ok(Channel::Force),
+        other => bail!("expected displacement or force, found `{other}`"),
+    }
+}
+
 /// Parses `CHANNEL=VALUE` for `--subtract`: `displacement=0.5`, `force=-0.7`.
 pub fn parse_subtract(text: &str) -> Result<(Channel, f64)> {
     let (name, value) = text
         .split_once('=')
         .ok_or_else(|| anyhow!("`{text}`: expected displacement=VALUE or force=VALUE"))?;
-    let channel = match name.trim() {
-        "displacement" => Channel::Displacement,
-        "force" => Channel::Force,
-        other => bail!("`{text}`: expected displacement or force before `=`, found `{other}`"),
-    };
+    let channel = parse_channel(name).map_err(|e| anyhow!("`{text}`: {e} before `=`"))?;
     let value: f64 = value
         .trim()
         .parse()
@@ -110,6 +115,11 @@ pub struct ReadArgs {
     /// channel.
     #[arg(long, value_name = "CHANNEL=VALUE", value_parser = parse_subtract)]
     pub subtract: Vec<(Channel, f64)>,
+    /// Flip the sign of a channel (`displacement` or `force`), before any
+    /// `--subtract`: a transducer mounted the other way round, as the fitting
+    /// verbs suspect when a record gives out energy. Once per channel.
+    #[arg(long, value_name = "CHANNEL", value_parser = parse_channel)]
+    pub negate: Vec<Channel>,
 }
 
 impl ReadArgs {
@@ -133,6 +143,9 @@ impl ReadArgs {
         }
         for c in &self.ignore {
             opts = opts.role(c.clone(), Role::Ignore);
+        }
+        for &channel in &self.negate {
+            opts = opts.negate(channel);
         }
         for &(channel, value) in &self.subtract {
             opts = opts.subtract(channel, value);

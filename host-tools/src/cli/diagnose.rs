@@ -12,6 +12,7 @@ use crate::discover::suspects::default_candidates;
 use crate::discover::{page, weigh, Diagnosis, Suspect, WeighOptions};
 use crate::fit::experiment::Drive;
 use crate::fit::input_noise::Monotone;
+use crate::fit::objectives;
 use crate::fit::problem::Problem;
 use crate::fit::run::{self, Method, Outcome, Progress};
 use crate::model::{EffectRef, ModelSpec, ParamFile};
@@ -205,6 +206,9 @@ pub struct Beyond {
     /// ([`crate::fit::input_noise::monotone`]): the loader decided, this
     /// reports it.
     pub displacement_noise: Option<Monotone>,
+    /// The record gives out energy ([`objectives::gives_out_energy`]): a
+    /// channel's sign is likely flipped.
+    pub gives_out_energy: Option<String>,
 }
 
 impl Beyond {
@@ -232,15 +236,27 @@ impl Beyond {
                 .flatten(),
             start_offset: offset::start(problem, outcome, d),
             displacement_noise: monotone,
+            gives_out_energy: displacement
+                .then(|| {
+                    objectives::gives_out_energy(problem.exp.displacement(), problem.exp.force())
+                })
+                .flatten(),
         }
     }
 
-    /// What the loader did to a noisy displacement, as a sentence.
-    fn noise_words(&self) -> Option<String> {
-        self.displacement_noise.as_ref().map(|m| {
-            let words = m.describe("displacement", "mm");
-            format!("{}{}.", words[..1].to_uppercase(), &words[1..])
-        })
+    /// What the record itself shows: the energy it gives out, what the
+    /// loader did to a noisy displacement; as sentences.
+    fn record_words(&self) -> Vec<String> {
+        let noise = self
+            .displacement_noise
+            .as_ref()
+            .map(|m| m.describe("displacement", "mm"));
+        self.gives_out_energy
+            .iter()
+            .cloned()
+            .chain(noise)
+            .map(|words| format!("{}{}.", words[..1].to_uppercase(), &words[1..]))
+            .collect()
     }
 
     /// The checks that ran, as (name, significant, evidence).
@@ -270,9 +286,12 @@ impl Beyond {
 
     /// Adds the checks to an HTML report.
     pub fn section(&self, report: &mut Report) {
-        if let Some(words) = self.noise_words() {
-            report.section("The record: noise in the displacement");
-            report.paragraph(&words);
+        let words = self.record_words();
+        if !words.is_empty() {
+            report.section("The record");
+            for w in &words {
+                report.paragraph(w);
+            }
         }
         for (name, _, evidence) in self.found() {
             report.section(&format!("Beyond the library: {name}"));
@@ -324,6 +343,7 @@ pub fn diagnosis_json(
         "force_offset": beyond.force_offset,
         "start_offset": beyond.start_offset,
         "displacement_noise": beyond.displacement_noise,
+        "gives_out_energy": beyond.gives_out_energy,
     })
 }
 
@@ -347,9 +367,12 @@ pub fn print_diagnosis(
     for at in outcome.at_bounds.iter().filter(|a| a.beyond_is_valid) {
         outln!("  note: {at}; the suspects below judge the misfit this leaves.");
     }
-    if let Some(words) = beyond.noise_words() {
+    let words = beyond.record_words();
+    if !words.is_empty() {
         outln!("the record:");
-        outln!("  {words}");
+    }
+    for w in words {
+        outln!("  {w}");
     }
     outln!("where it fails:");
     for p in d.places.iter().take(4) {

@@ -6,7 +6,7 @@ use crate::data;
 use crate::fit::experiment::{Between, Drive, Experiment, Prediction, SimError};
 use crate::fit::input_noise::{self, Monotone};
 use crate::fit::nsga2::{BinaryCrossover, Encoding, Nsga2};
-use crate::fit::objectives::Scores;
+use crate::fit::objectives::{self, Scores};
 use crate::fit::problem::Problem;
 use crate::fit::run::{self, Evolution, Method, Outcome, Progress};
 use crate::model::{to_json, ParamFile};
@@ -452,6 +452,11 @@ pub fn load_timed(
     let mut exp = Experiment::from_record(&record, mass)?;
     if let Some(between) = forcing {
         exp = exp.with_forcing(between)?;
+    }
+    if exp.drive == Drive::Displacement {
+        if let Some(words) = objectives::gives_out_energy(exp.displacement(), exp.force()) {
+            eprintln!("note: {}: {words}", path.display());
+        }
     }
     let monotone = match exp.drive {
         Drive::Displacement => monotone_input(path, &mut exp.input, read, "displacement", "mm"),

@@ -76,6 +76,9 @@ pub struct ReadOptions {
     /// Constants taken off a channel once it is read (a known zero offset of
     /// an instrument; [`Record::subtract`]), each reported as a notice.
     pub subtract: Vec<(Channel, f64)>,
+    /// Channels whose sign is flipped once read, before any constant is
+    /// subtracted ([`Record::negate`]).
+    pub negate: Vec<Channel>,
 }
 
 impl ReadOptions {
@@ -112,6 +115,12 @@ impl ReadOptions {
     /// Takes `value` off every sample of `channel` once it is read.
     pub fn subtract(mut self, channel: Channel, value: f64) -> Self {
         self.subtract.push((channel, value));
+        self
+    }
+
+    /// Flips the sign of `channel` once it is read.
+    pub fn negate(mut self, channel: Channel) -> Self {
+        self.negate.push(channel);
         self
     }
 
@@ -236,6 +245,15 @@ pub fn read_str(
         Format::Csv => csv::parse(name.as_ref(), text, options),
         Format::Json => json::parse(name.as_ref(), text, options),
     }?;
+    for (i, &channel) in options.negate.iter().enumerate() {
+        if options.negate[..i].contains(&channel) {
+            return Err(DataError::file(
+                name.as_ref(),
+                format!("expected the {channel} to be negated once, found it asked twice"),
+            ));
+        }
+        record.negate(channel)?;
+    }
     for (i, &(channel, value)) in options.subtract.iter().enumerate() {
         if options.subtract[..i].iter().any(|(c, _)| *c == channel) {
             return Err(DataError::file(

@@ -146,6 +146,11 @@ pub enum Notice {
         /// The canonical unit the constant is in.
         unit: Unit,
     },
+    /// The sign of every sample of a column was flipped (read options).
+    Negated {
+        /// The column.
+        column: String,
+    },
     /// The time base was built from a sample rate: sample `k` is at `k / rate`.
     TimeFromSampleRate {
         /// The rate in Hz.
@@ -214,6 +219,10 @@ impl fmt::Display for Notice {
             } => write!(
                 f,
                 "column '{column}': {value} {unit} subtracted from every sample (read options)"
+            ),
+            Notice::Negated { column } => write!(
+                f,
+                "column '{column}': the sign of every sample flipped (read options)"
             ),
             Notice::TimeFromSampleRate { hz, replaced } => {
                 write!(f, "time built from the sample rate {hz} Hz (t = k / {hz})")?;
@@ -495,6 +504,34 @@ impl Record {
             value,
             unit,
         });
+        Ok(())
+    }
+
+    /// Flips the sign of every sample of `channel` (a transducer mounted the
+    /// other way round). Said in a notice; an error if the record has no such
+    /// channel.
+    ///
+    /// ```
+    /// use hyst::data::{Channel, Record};
+    /// let mut r = Record::from_history("ramp", vec![0.5, 1.0], None).unwrap();
+    /// r.negate(Channel::Displacement).unwrap();
+    /// assert_eq!(r.input(), &[-0.5, -1.0]);
+    /// assert!(r.negate(Channel::Force).is_err());
+    /// ```
+    pub fn negate(&mut self, channel: Channel) -> Result<(), DataError> {
+        let series = match channel {
+            Channel::Displacement => self.displacement.as_mut(),
+            Channel::Force => self.force.as_mut(),
+        };
+        let Some(series) = series else {
+            return Err(DataError::file(
+                &self.source,
+                format!("cannot negate the {channel}: the record has no {channel}"),
+            ));
+        };
+        series.values.iter_mut().for_each(|v| *v = -*v);
+        let column = series.name.clone();
+        self.notices.push(Notice::Negated { column });
         Ok(())
     }
 
