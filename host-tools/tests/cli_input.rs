@@ -1343,6 +1343,25 @@ fn subtract_takes_a_zero_offset_off_a_channel_and_says_so() {
         "{with_offset} {clean_nrmse}"
     );
     assert!(taken_off < 2.0 * clean_nrmse, "{taken_off} {clean_nrmse}");
+    // The fit file says what was taken off, for a later `simulate` or `diagnose --params`.
+    let out = tmp("offset-fit.json");
+    let out = out.to_str().unwrap();
+    ok(hyst(&[
+        "fit",
+        &offset_path,
+        "--method",
+        "lsq",
+        "--subtract",
+        "force=0.7",
+        "--negate",
+        "displacement",
+        "--out",
+        out,
+    ]));
+    let file: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out).unwrap()).unwrap();
+    assert_eq!(file["fit"]["subtract"]["force"], 0.7, "{file}");
+    assert_eq!(file["fit"]["negate"][0], "displacement", "{file}");
 }
 
 /// `--negate` flips a channel's sign as the record is read; a record that gives out energy (its

@@ -132,6 +132,25 @@ fn simulate_writes_what_the_element_computes() {
     for (a, b) in r2.force().unwrap().iter().zip(&direct.torque) {
         assert!((a - b).abs() < 1e-9);
     }
+
+    // The read options hold here too (they were ignored for the PHM: found by review): a
+    // history 1 deg off, taken back by `--subtract` (canonical deg), is the history.
+    let shifted = write(
+        "hist_shifted.csv",
+        &csv("twist (deg)", x.iter().map(|v| (v + 1.0).to_string())),
+    );
+    let o3 = ok(hyst(&[
+        "simulate",
+        &shifted,
+        "--params",
+        &p,
+        "--subtract",
+        "displacement=1",
+    ]));
+    let r3 = stdout_record(o3);
+    for (a, b) in r3.force().unwrap().iter().zip(&direct.torque) {
+        assert!((a - b).abs() < 1e-9);
+    }
 }
 
 /// `clean` with deterministic noise of standard deviation 1: sums of 12

@@ -212,14 +212,14 @@ pub struct Beyond {
 }
 
 impl Beyond {
-    /// The checks on the fit `outcome` of `problem`, lined up as `d`, its
-    /// candidate effects weighed as `suspects`, with what the loader did to a
-    /// noisy displacement.
+    /// The checks on the fit `outcome` of `problem`, lined up as `d`, with
+    /// what the loader did to a noisy displacement; the zero offsets are the
+    /// caller's ([`offset::of_fit`], [`offset::of_ladder`]), which know the
+    /// fits to weigh them on.
     pub fn check(
         problem: &Problem,
         outcome: &Outcome,
         d: &Diagnosis,
-        suspects: &[Suspect],
         time: Option<&[f64]>,
         monotone: Option<Monotone>,
     ) -> Self {
@@ -231,10 +231,8 @@ impl Beyond {
         Beyond {
             rate,
             slip: slip::check(d, &problem.exp.drive),
-            force_offset: displacement
-                .then(|| offset::force(d, outcome.scores.nrmse, suspects))
-                .flatten(),
-            start_offset: offset::start(problem, outcome, d),
+            force_offset: None,
+            start_offset: None,
             displacement_noise: monotone,
             gives_out_energy: displacement
                 .then(|| {
@@ -417,7 +415,8 @@ pub fn run(args: DiagnoseArgs) -> Result<()> {
     let d = Diagnosis::new(&problem, &outcome)?;
     bar.status("weighing the candidate effects");
     let suspects = weigh(&problem, &outcome, &d, &options);
-    let beyond = Beyond::check(&problem, &outcome, &d, &suspects, time.as_deref(), monotone);
+    let mut beyond = Beyond::check(&problem, &outcome, &d, time.as_deref(), monotone);
+    (beyond.force_offset, beyond.start_offset) = offset::of_fit(&problem, &outcome, &d, &suspects);
     bar.finish();
     if let Some(path) = &args.common.report {
         let mut report = Report::new(&format!("Diagnosis of {}", args.common.data.display()));

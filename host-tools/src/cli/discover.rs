@@ -55,7 +55,6 @@ pub fn run(args: DiscoverArgs) -> Result<()> {
         &last.problem,
         &last.outcome,
         &last.diagnosis,
-        &last.suspects,
         time.as_deref(),
         monotone,
     );

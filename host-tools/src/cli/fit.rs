@@ -609,6 +609,21 @@ pub fn run(args: FitArgs) -> Result<()> {
     if let Some(start) = &start {
         file["fit"]["start"] = json!(start.path.display().to_string());
     }
+    // What was done to the record as it was read, so that a later `simulate` or `diagnose
+    // --params` of the same file can be given the same (found by review).
+    if !args.read.negate.is_empty() {
+        let names: Vec<String> = args.read.negate.iter().map(|c| c.to_string()).collect();
+        file["fit"]["negate"] = json!(names);
+    }
+    if !args.read.subtract.is_empty() {
+        let given: serde_json::Map<String, Value> = args
+            .read
+            .subtract
+            .iter()
+            .map(|(c, v)| (c.to_string(), json!(v)))
+            .collect();
+        file["fit"]["subtract"] = Value::Object(given);
+    }
     if let Some(out) = &args.out {
         std::fs::write(out, serde_json::to_string_pretty(&file)? + "\n")
             .with_context(|| format!("{}: cannot write", out.display()))?;

@@ -3,7 +3,7 @@
 
 use super::fit::{monotone_input, Bar, FitArgs};
 use super::simulate::SimulateArgs;
-use crate::data::{self, Channel, Quantity, ReadOptions, Record, Unit};
+use crate::data::{self, Channel, Quantity, Record, Unit};
 use crate::fit::phm::{
     amplitudes, breakpoint_starts, first_excursions, fit_envelope, idealise, valid_start,
     PhmOutcome, PhmProblem,
@@ -59,7 +59,7 @@ pub fn simulate(args: &SimulateArgs) -> Result<()> {
     let (tu, mu) = file.data_units;
     let record = data::read(
         &args.history,
-        &ReadOptions::default().input(Channel::Displacement),
+        &args.read.options().input(Channel::Displacement),
     )?;
     for n in record.notices() {
         eprintln!("note: {n}");
