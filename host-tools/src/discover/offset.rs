@@ -95,9 +95,9 @@ pub struct OffsetCheck {
     pub value: f64,
     /// The offset as a fraction of the record's peak force or displacement.
     pub relative: f64,
-    /// For a start away from rest: the constant force that, taken off as
-    /// well, fits better than the start alone (a force offset the model had
-    /// absorbed into its first jump), if any.
+    /// For a named start away from rest: the constant force that, taken off
+    /// as well, adds a BIC change below -10 to the start alone (a force offset
+    /// the model had absorbed into its first jump), if any.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub with_force: Option<f64>,
     /// Share of the squared error that removing the offset removes.
@@ -108,8 +108,9 @@ pub struct OffsetCheck {
     /// BIC change from removing the offset (one added number, two with
     /// `with_force`).
     pub delta_bic: f64,
-    /// Effective sample size used: the suspects' (that of the best model they
-    /// found), so that the offset and the effects are weighed on one scale.
+    /// Effective sample size used: the larger of the suspects' (that of the
+    /// best model they found, so that the offset and the effects are weighed
+    /// on one scale) and that of the residual with the offset removed.
     pub n_eff: f64,
     /// For the force offset: the NRMSE of the model refitted with
     /// asymmetry, where the suspects weighed it.
