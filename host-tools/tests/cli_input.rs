@@ -30,6 +30,27 @@ fn column_record() -> String {
     text
 }
 
+/// [`column_record`] with each force value rewritten by `force` (its text as written).
+fn column_record_with_force(force: impl Fn(f64) -> String) -> String {
+    column_record()
+        .lines()
+        .enumerate()
+        .map(|(i, l)| match (i, l.split_once(',')) {
+            (0, _) | (_, None) => format!("{l}\n"),
+            (_, Some((u, f))) => format!("{u},{}\n", force(f.parse().unwrap())),
+        })
+        .collect()
+}
+
+/// `hyst fit PATH --method lsq --json EXTRA...`: its NRMSE and its standard error.
+fn lsq_fit(path: &str, extra: &[&str]) -> (f64, String) {
+    let mut args = vec!["fit", path, "--method", "lsq", "--json"];
+    args.extend_from_slice(extra);
+    let out = ok(hyst(&args));
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    (v["nrmse"].as_f64().unwrap(), cli::stderr(&out))
+}
+
 /// The first `lines` lines of the thesis' Bouc-Wen example (`benches/baselines/bw_synthetic.csv`:
 /// 500 kg, k = 6 kN/mm, F = t sin(2 pi t) kN at 500 Hz, its comment lines included) as `name`.
 fn thesis_example(name: &str, lines: usize) -> String {
@@ -1315,23 +1336,9 @@ fn subtract_takes_a_zero_offset_off_a_channel_and_says_so() {
     }
 
     // The same record with 0.7 kN added to every force sample, fitted with it taken off.
-    let clean = column_record();
-    let offset: String = clean
-        .lines()
-        .enumerate()
-        .map(|(i, l)| match (i, l.split_once(',')) {
-            (0, _) | (_, None) => format!("{l}\n"),
-            (_, Some((u, f))) => format!("{u},{:.5}\n", f.parse::<f64>().unwrap() + 0.7),
-        })
-        .collect();
-    let fit_nrmse = |path: &str, extra: &[&str]| -> f64 {
-        let mut args = vec!["fit", path, "--method", "lsq", "--json"];
-        args.extend_from_slice(extra);
-        let out = ok(hyst(&args));
-        let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
-        v["nrmse"].as_f64().unwrap()
-    };
-    let clean_nrmse = fit_nrmse(&write("clean.csv", &clean), &[]);
+    let offset = column_record_with_force(|f| format!("{:.5}", f + 0.7));
+    let fit_nrmse = |path: &str, extra: &[&str]| lsq_fit(path, extra).0;
+    let clean_nrmse = fit_nrmse(&write("clean.csv", &column_record()), &[]);
     let offset_path = write("offset.csv", &offset);
     let with_offset = fit_nrmse(&offset_path, &[]);
     let taken_off = fit_nrmse(&offset_path, &["--subtract", "force=0.7"]);
@@ -1399,31 +1406,17 @@ fn negate_flips_a_channel_and_a_record_that_gives_out_energy_is_named() {
     assert!(e.contains("negated once"), "{e}");
 
     let clean = column_record();
-    let flipped: String = clean
-        .lines()
-        .enumerate()
-        .map(|(i, l)| match (i, l.split_once(',')) {
-            (0, _) | (_, None) => format!("{l}\n"),
-            (_, Some((u, f))) => format!("{u},{}\n", -f.parse::<f64>().unwrap()),
-        })
-        .collect();
-    let fit = |path: &str, extra: &[&str]| {
-        let mut args = vec!["fit", path, "--method", "lsq", "--json"];
-        args.extend_from_slice(extra);
-        let out = ok(hyst(&args));
-        let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
-        (v["nrmse"].as_f64().unwrap(), cli::stderr(&out))
-    };
-    let (clean_nrmse, note) = fit(&write("clean.csv", &clean), &[]);
+    let flipped = column_record_with_force(|f| format!("{}", -f));
+    let (clean_nrmse, note) = lsq_fit(&write("clean.csv", &clean), &[]);
     assert!(!note.contains("gives out energy"), "{note}");
     let path = write("flipped.csv", &flipped);
-    let (bad, note) = fit(&path, &[]);
+    let (bad, note) = lsq_fit(&path, &[]);
     assert!(
         note.contains("gives out energy") && note.contains("--negate force"),
         "{note}"
     );
     assert!(bad > 0.5, "{bad}");
-    let (fixed, note) = fit(&path, &["--negate", "force"]);
+    let (fixed, note) = lsq_fit(&path, &["--negate", "force"]);
     assert!(!note.contains("gives out energy"), "{note}");
     assert_eq!(fixed, clean_nrmse);
 }

@@ -478,20 +478,10 @@ impl Record {
     /// assert!(r.subtract(Channel::Force, 1.0).is_err());
     /// ```
     pub fn subtract(&mut self, channel: Channel, value: f64) -> Result<(), DataError> {
-        let source = self.source.clone();
-        let series = match channel {
-            Channel::Displacement => self.displacement.as_mut(),
-            Channel::Force => self.force.as_mut(),
-        };
-        let Some(series) = series else {
-            return Err(DataError::file(
-                &source,
-                format!("cannot subtract {value} from the {channel}: the record has no {channel}"),
-            ));
-        };
+        let series = self.series_to_change(channel, &format!("subtract {value} from"))?;
         if !value.is_finite() {
             return Err(DataError::file(
-                &source,
+                &self.source,
                 format!("expected a finite offset to subtract from the {channel}, found {value}"),
             ));
         }
@@ -519,20 +509,30 @@ impl Record {
     /// assert!(r.negate(Channel::Force).is_err());
     /// ```
     pub fn negate(&mut self, channel: Channel) -> Result<(), DataError> {
-        let series = match channel {
-            Channel::Displacement => self.displacement.as_mut(),
-            Channel::Force => self.force.as_mut(),
-        };
-        let Some(series) = series else {
-            return Err(DataError::file(
-                &self.source,
-                format!("cannot negate the {channel}: the record has no {channel}"),
-            ));
-        };
+        let series = self.series_to_change(channel, "negate")?;
         series.values.iter_mut().for_each(|v| *v = -*v);
         let column = series.name.clone();
         self.notices.push(Notice::Negated { column });
         Ok(())
+    }
+
+    /// The series of `channel`, to change in place, or an error saying the
+    /// record has none: "cannot `{doing}` the {channel}".
+    fn series_to_change(
+        &mut self,
+        channel: Channel,
+        doing: &str,
+    ) -> Result<&mut Series, DataError> {
+        let series = match channel {
+            Channel::Displacement => self.displacement.as_mut(),
+            Channel::Force => self.force.as_mut(),
+        };
+        series.ok_or_else(|| {
+            DataError::file(
+                &self.source,
+                format!("cannot {doing} the {channel}: the record has no {channel}"),
+            )
+        })
     }
 
     /// The record with another input channel (which must be present).

@@ -56,6 +56,7 @@
 
 use super::diagnosis::Diagnosis;
 use super::ladder::{Discovery, Step};
+use super::signature::mean;
 use super::suspects::{effective_n, Suspect, SIGNIFICANT_BIC};
 use crate::fit::experiment::Drive;
 use crate::fit::problem::Problem;
@@ -242,10 +243,6 @@ fn early_reading(r: &[f64], u: &[f64]) -> Option<(f64, usize)> {
 
 fn peak(x: &[f64]) -> f64 {
     x.iter().fold(0.0f64, |a, v| a.max(v.abs()))
-}
-
-fn mean(x: &[f64]) -> f64 {
-    x.iter().sum::<f64>() / x.len() as f64
 }
 
 /// Looks for a force offset in the residual of the displacement-driven fit

@@ -156,7 +156,8 @@ fn repeated_drops(cycles: &[CycleStats]) -> Option<(f64, f64)> {
     (pairs > 0).then(|| (1.0 - meas.1 / meas.0, 1.0 - model.1 / model.0))
 }
 
-fn mean(v: &[f64]) -> f64 {
+/// The mean of `v` (0 for an empty slice).
+pub(super) fn mean(v: &[f64]) -> f64 {
     v.iter().sum::<f64>() / v.len().max(1) as f64
 }
 
