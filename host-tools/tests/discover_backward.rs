@@ -1,9 +1,15 @@
 //! The ladder's backward step (`hyst::discover::ladder::redundant`): an
 //! effect the final model does not need is found and taken away; one the
-//! record holds is kept. The records come from the project's simulator with
-//! a known hidden model, which is the expectation.
+//! record holds is kept. And the effects a user gives with the model, which
+//! the loop keeps (`unneeded`): named when the record does not need them.
+//! The records come from the project's simulator with a known hidden model,
+//! which is the expectation.
 
-use hyst::discover::ladder::{redundant, Step};
+#[path = "support/cli.rs"]
+mod cli;
+
+use cli::{hyst, ok, write};
+use hyst::discover::ladder::{redundant, unneeded, Step};
 use hyst::discover::synthetic::{record, Noise, Path};
 use hyst::fit::problem::Problem;
 use hyst::fit::run::{self, Method, Quiet};
@@ -12,6 +18,7 @@ use hysteresis::bwbn::EffectKind;
 
 const STRENGTH: EffectRef = EffectRef::Builtin(EffectKind::StrengthDegradation);
 const STIFFNESS: EffectRef = EffectRef::Builtin(EffectKind::StiffnessDegradation);
+const PINCHING: EffectRef = EffectRef::Builtin(EffectKind::Pinching);
 
 /// `bw+strength-degradation+stiffness-degradation` fitted to a record that
 /// hides `hidden`, as the final step of a ladder.
@@ -42,6 +49,13 @@ fn an_effect_the_record_lacks_is_taken_away_and_one_it_holds_is_kept() {
         );
         // Kept (an effect of the first model): nothing else to take away.
         assert!(redundant(&step, &[STIFFNESS], &[]).is_none(), "seed {seed}");
+        // ...but named as one the record does not need, and only it.
+        let given = [STRENGTH, STIFFNESS];
+        let named = unneeded(&step.problem, &step.outcome, &step.diagnosis, &given, &[]);
+        let names: Vec<&str> = named.iter().map(|u| u.effect).collect();
+        assert_eq!(names, ["stiffness-degradation"], "seed {seed}");
+        assert_eq!(named[0].nrmse_with, with);
+        assert!(named[0].nrmse_without < with * 1.02, "seed {seed}");
 
         // Both hidden: both stay.
         let step = final_step(
@@ -57,6 +71,61 @@ fn an_effect_the_record_lacks_is_taken_away_and_one_it_holds_is_kept() {
                 r.effect.name(),
                 r.delta_bic
             );
+        }
+        let given = [STRENGTH, STIFFNESS];
+        let named = unneeded(&step.problem, &step.outcome, &step.diagnosis, &given, &[]);
+        assert!(named.is_empty(), "seed {seed}: {named:?}");
+    }
+}
+
+/// `hyst diagnose` on a record with nothing hidden, given `bw+pinching`,
+/// says that the record does not need pinching (text and JSON); on a record
+/// with pinching hidden it says nothing of the kind.
+#[test]
+fn diagnose_names_a_given_effect_the_record_does_not_need() {
+    for (hidden, name) in [(vec![], "plain"), (vec![EffectKind::Pinching], "pinched")] {
+        let exp = record(&hidden, Path::StepWise, Noise::LOW, 3).unwrap();
+        let rows: String = exp
+            .input
+            .iter()
+            .zip(&exp.output)
+            .map(|(u, f)| format!("{u},{f}\n"))
+            .collect();
+        let csv = write(
+            &format!("{name}.csv"),
+            &format!("displacement (mm),force (kN)\n{rows}"),
+        );
+        let spec = ModelSpec::BW.with(PINCHING).to_string();
+        // Weighing no candidate keeps the test to the one removal.
+        let args = [
+            "diagnose",
+            &csv,
+            "--model",
+            &spec,
+            "--candidates",
+            "asymmetry",
+        ];
+        let json = ok(hyst(&[&args[..], &["--json"]].concat())).stdout;
+        let v: serde_json::Value = serde_json::from_slice(&json).unwrap();
+        let named = v["not_needed"].as_array().expect("a list");
+        if hidden.is_empty() {
+            assert_eq!(named.len(), 1, "{name}: {v}");
+            assert_eq!(named[0]["effect"], "pinching", "{name}: {v}");
+            let delta = named[0]["delta_bic"].as_f64().unwrap();
+            assert!(delta < 2.0, "{name}: {delta}");
+            // Without pinching's six parameters the fit is as good, to the noise.
+            let (with, without) = (
+                named[0]["nrmse_with"].as_f64().unwrap(),
+                named[0]["nrmse_without"].as_f64().unwrap(),
+            );
+            assert!(without < 1.02 * with, "{name}: {without} against {with}");
+            let text = String::from_utf8(ok(hyst(&args)).stdout).unwrap();
+            assert!(
+                text.contains("effects of the model the record does not need:\n  pinching: "),
+                "{text}"
+            );
+        } else {
+            assert!(named.is_empty(), "{name}: {v}");
         }
     }
 }

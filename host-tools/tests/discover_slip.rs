@@ -189,6 +189,7 @@ fn a_gap_found_on_the_first_model_stands_when_the_ladder_papers_over_it() {
     let ladder = Discovery {
         rungs: vec![],
         steps: vec![step(ModelSpec::BW), step(pinched)],
+        unneeded: vec![],
     };
     let last = ladder.last();
     let on_last = slip::check(&last.diagnosis, &last.problem.exp.drive);
@@ -214,6 +215,7 @@ fn a_gap_found_on_the_first_model_stands_when_the_ladder_papers_over_it() {
     let one = Discovery {
         rungs: vec![],
         steps: vec![step(ModelSpec::BW)],
+        unneeded: vec![],
     };
     assert_eq!(slip::of_ladder(&one, None), None);
 }

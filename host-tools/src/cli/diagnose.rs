@@ -5,6 +5,7 @@
 use super::columns::ReadArgs;
 use super::fit::{given_point, load_timed, mass_of, parse_fix, Bar, Loaded};
 use super::ForcingArgs;
+use crate::discover::ladder::{unneeded, Unneeded};
 use crate::discover::offset::{self, OffsetCheck};
 use crate::discover::rate::{self, RateCheck};
 use crate::discover::slip::{self, SlipCheck};
@@ -298,6 +299,16 @@ impl Beyond {
     }
 }
 
+/// Adds the effects the record does not need to an HTML report.
+pub fn unneeded_section(report: &mut Report, unneeded: &[Unneeded]) {
+    if !unneeded.is_empty() {
+        report.section("Effects of the model the record does not need");
+        for u in unneeded {
+            report.paragraph(&format!("{}.", u.words()));
+        }
+    }
+}
+
 /// JSON of the suspects, most likely first.
 pub fn suspects_json(suspects: &[Suspect]) -> Value {
     Value::Array(
@@ -325,6 +336,7 @@ pub fn diagnosis_json(
     d: &Diagnosis,
     suspects: &[Suspect],
     beyond: &Beyond,
+    unneeded: &[Unneeded],
 ) -> Value {
     json!({
         "model": problem.par.spec.to_string(),
@@ -336,6 +348,7 @@ pub fn diagnosis_json(
         "places": d.places,
         "cycles": d.cycles,
         "suspects": suspects_json(suspects),
+        "not_needed": unneeded,
         "rate_dependence": beyond.rate,
         "slip": beyond.slip,
         "force_offset": beyond.force_offset,
@@ -352,6 +365,7 @@ pub fn print_diagnosis(
     d: &Diagnosis,
     suspects: &[Suspect],
     beyond: &Beyond,
+    unneeded: &[Unneeded],
 ) -> std::io::Result<()> {
     outln!(
         "model {}: NRMSE {:.4} with {} parameters, total energy off by {:.1}%",
@@ -386,6 +400,12 @@ pub fn print_diagnosis(
         outln!("  {}. {:<22} {mark}", i + 1, s.effect.name());
         outln!("     {}", s.evidence);
     }
+    if !unneeded.is_empty() {
+        outln!("effects of the model the record does not need:");
+    }
+    for u in unneeded {
+        outln!("  {}.", u.words());
+    }
     let found = beyond.found();
     if !found.is_empty() {
         outln!("beyond the library's effects:");
@@ -415,6 +435,8 @@ pub fn run(args: DiagnoseArgs) -> Result<()> {
     let d = Diagnosis::new(&problem, &outcome)?;
     bar.status("weighing the candidate effects");
     let suspects = weigh(&problem, &outcome, &d, &options);
+    bar.status("taking out the model's effects one at a time");
+    let unneeded = unneeded(&problem, &outcome, &d, &problem.par.spec.effects(), &[]);
     let mut beyond = Beyond::check(&problem, &outcome, &d, time.as_deref(), monotone);
     (beyond.force_offset, beyond.start_offset) = offset::of_fit(&problem, &outcome, &d, &suspects);
     bar.finish();
@@ -432,6 +454,7 @@ pub fn run(args: DiagnoseArgs) -> Result<()> {
             &suspects,
             &units,
         )?;
+        unneeded_section(&mut report, &unneeded);
         beyond.section(&mut report);
         report
             .write(path)
@@ -441,11 +464,11 @@ pub fn run(args: DiagnoseArgs) -> Result<()> {
         outln!(
             "{}",
             serde_json::to_string_pretty(&diagnosis_json(
-                &problem, &outcome, &d, &suspects, &beyond
+                &problem, &outcome, &d, &suspects, &beyond, &unneeded
             ))?
         );
     } else {
-        print_diagnosis(&problem, &outcome, &d, &suspects, &beyond)?;
+        print_diagnosis(&problem, &outcome, &d, &suspects, &beyond, &unneeded)?;
     }
     Ok(())
 }

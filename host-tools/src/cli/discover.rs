@@ -2,7 +2,9 @@
 //! significant effect, refit from the previous fit, repeat until nothing
 //! significant is left; then the ladder.
 
-use super::diagnose::{diagnosis_json, initial_fit, print_diagnosis, Beyond, Common, Initial};
+use super::diagnose::{
+    diagnosis_json, initial_fit, print_diagnosis, unneeded_section, Beyond, Common, Initial,
+};
 use super::fit::Bar;
 use crate::discover::{discover, page};
 use crate::discover::{offset, slip};
@@ -76,6 +78,7 @@ pub fn run(args: DiscoverArgs) -> Result<()> {
             &discovery,
             &units,
         )?;
+        unneeded_section(&mut report, &discovery.unneeded);
         beyond.section(&mut report);
         report
             .write(path)
@@ -88,6 +91,7 @@ pub fn run(args: DiscoverArgs) -> Result<()> {
             &last.diagnosis,
             &last.suspects,
             &beyond,
+            &discovery.unneeded,
         );
         obj["ladder"] = json!(discovery.rungs);
         outln!("{}", serde_json::to_string_pretty(&obj)?);
@@ -118,12 +122,21 @@ pub fn run(args: DiscoverArgs) -> Result<()> {
             "error fell {:.1}x, from {first:.4} to {final_:.4}\n",
             first / final_
         );
+        if !discovery.unneeded.is_empty() {
+            let names: Vec<&str> = discovery.unneeded.iter().map(|u| u.effect).collect();
+            outln!(
+                "note: the loop keeps the effects of the model it starts from; the record does not need {} (below): start from a model without {}\n",
+                names.join(" and "),
+                if names.len() == 1 { "it" } else { "them" }
+            );
+        }
         print_diagnosis(
             &last.problem,
             &last.outcome,
             &last.diagnosis,
             &last.suspects,
             &beyond,
+            &discovery.unneeded,
         )?;
     }
     Ok(())

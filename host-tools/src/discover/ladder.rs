@@ -105,6 +105,9 @@ pub struct Discovery {
     pub rungs: Vec<Rung>,
     /// Every step, the last one being the final model.
     pub steps: Vec<Step>,
+    /// Effects of the first model that the final one does not need: the
+    /// backward step keeps the effects the loop starts from, and says so.
+    pub unneeded: Vec<Unneeded>,
 }
 
 impl Discovery {
@@ -116,12 +119,12 @@ impl Discovery {
     }
 }
 
-/// An effect the final model does not need: its removal raises the BIC by
-/// less than [`REMOVAL_BIC`].
-pub struct Redundant {
+/// An effect taken out of a model, and the model refitted without it.
+pub struct Removal {
     /// The effect.
     pub effect: EffectRef,
-    /// BIC change of removing it (below [`REMOVAL_BIC`]).
+    /// BIC change of removing it: below [`REMOVAL_BIC`], the model does not
+    /// need it.
     pub delta_bic: f64,
     /// The model without it, refitted.
     pub problem: Problem,
@@ -129,25 +132,31 @@ pub struct Redundant {
     pub outcome: Outcome,
 }
 
-/// The effect of `step`'s model, other than those in `keep`, whose removal
-/// raises the BIC least, when that rise is below [`REMOVAL_BIC`]; each removal is
-/// refitted from `step`'s fit with the effect switched off, and the better
-/// of that and an `earlier` fit of the same model counts. The effective
-/// sample size is that of `step`'s residual, with the half-cycles as floor
-/// (as in [`suspects::weigh`]).
-pub fn redundant(step: &Step, keep: &[EffectRef], earlier: &[Step]) -> Option<Redundant> {
-    let problem = &step.problem;
+/// Each effect of `effects` taken out of the model of `problem`, fitted as
+/// `outcome` and lined up with its record as `diagnosis`, with the BIC change
+/// of its removal. Each removal is refitted from `outcome` with the effect
+/// switched off, and the better of that and an `earlier` fit of the same
+/// model counts. The effective sample size is that of the model's residual,
+/// with the half-cycles as floor (as in [`suspects::weigh`]).
+pub fn removals(
+    problem: &Problem,
+    outcome: &Outcome,
+    diagnosis: &Diagnosis,
+    effects: &[EffectRef],
+    earlier: &[Step],
+) -> Vec<Removal> {
     let spec = problem.par.spec;
-    let residual = suspects::residual(problem, &step.outcome.x)?;
-    let floor = step.diagnosis.segmentation.cycles().half_cycles().len();
+    let Some(residual) = suspects::residual(problem, &outcome.x) else {
+        return vec![];
+    };
+    let floor = diagnosis.segmentation.cycles().half_cycles().len();
     let n_eff = effective_n(&residual, problem.dim(), floor);
-    let full = bic(step.outcome.scores.nrmse.powi(2), problem.dim(), n_eff);
-    let warm: BTreeMap<&str, f64> = step.outcome.values.iter().map(|(k, v)| (*k, *v)).collect();
-    let removals: Vec<Redundant> = spec
-        .effects()
-        .into_par_iter()
-        .filter(|e| !keep.contains(e))
-        .filter_map(|e| {
+    let full = bic(outcome.scores.nrmse.powi(2), problem.dim(), n_eff);
+    let warm: BTreeMap<&str, f64> = outcome.values.iter().map(|(k, v)| (*k, *v)).collect();
+    effects
+        .par_iter()
+        .filter(|e| spec.contains(**e))
+        .filter_map(|&e| {
             let smaller = spec.without(e);
             let fixed: Vec<(String, f64)> = problem
                 .par
@@ -173,18 +182,90 @@ pub fn redundant(step: &Step, keep: &[EffectRef], earlier: &[Step]) -> Option<Re
                 .chain(before)
                 .min_by(|a, b| a.scores.nrmse.total_cmp(&b.scores.nrmse))?;
             let delta = bic(outcome.scores.nrmse.powi(2), p.dim(), n_eff) - full;
-            Some(Redundant {
+            Some(Removal {
                 effect: e,
                 delta_bic: delta,
                 problem: p,
                 outcome,
             })
         })
-        .collect();
-    removals
+        .collect()
+}
+
+/// An effect of a model that its record does not need: taken out and the
+/// model refitted, the BIC rises by less than [`REMOVAL_BIC`].
+#[derive(Clone, Debug, Serialize)]
+pub struct Unneeded {
+    /// The effect.
+    pub effect: &'static str,
+    /// BIC change of removing it.
+    pub delta_bic: f64,
+    /// NRMSE of the model with it.
+    pub nrmse_with: f64,
+    /// NRMSE of the model refitted without it.
+    pub nrmse_without: f64,
+}
+
+impl Unneeded {
+    /// One sentence.
+    pub fn words(&self) -> String {
+        let verdict = if self.delta_bic <= 0.0 {
+            "the model is better without it".to_string()
+        } else {
+            format!("below {REMOVAL_BIC}, not worth more than a bare mention")
+        };
+        format!(
+            "{}: the model refitted without it reaches NRMSE {:.4} ({:.4} with it), a BIC change \
+             of {:+.1}: {verdict}, so the record does not need it",
+            self.effect, self.nrmse_without, self.nrmse_with, self.delta_bic
+        )
+    }
+}
+
+/// The effects of `effects` that the model of `problem`, fitted as
+/// `outcome`, does not need (the [`removals`] below [`REMOVAL_BIC`]), the
+/// least needed first: what a diagnosis says of the effects a user gave.
+pub fn unneeded(
+    problem: &Problem,
+    outcome: &Outcome,
+    diagnosis: &Diagnosis,
+    effects: &[EffectRef],
+    earlier: &[Step],
+) -> Vec<Unneeded> {
+    let mut found: Vec<Unneeded> = removals(problem, outcome, diagnosis, effects, earlier)
         .into_iter()
         .filter(|r| r.delta_bic < REMOVAL_BIC)
-        .min_by(|a, b| a.delta_bic.total_cmp(&b.delta_bic))
+        .map(|r| Unneeded {
+            effect: r.effect.name(),
+            delta_bic: r.delta_bic,
+            nrmse_with: outcome.scores.nrmse,
+            nrmse_without: r.outcome.scores.nrmse,
+        })
+        .collect();
+    found.sort_by(|a, b| a.delta_bic.total_cmp(&b.delta_bic));
+    found
+}
+
+/// The effect of `step`'s model, other than those in `keep`, whose removal
+/// raises the BIC least, when that rise is below [`REMOVAL_BIC`] (the
+/// removals of [`removals`]; `earlier` steps' fits count as theirs do).
+pub fn redundant(step: &Step, keep: &[EffectRef], earlier: &[Step]) -> Option<Removal> {
+    let candidates: Vec<EffectRef> = step
+        .spec
+        .effects()
+        .into_iter()
+        .filter(|e| !keep.contains(e))
+        .collect();
+    removals(
+        &step.problem,
+        &step.outcome,
+        &step.diagnosis,
+        &candidates,
+        earlier,
+    )
+    .into_iter()
+    .filter(|r| r.delta_bic < REMOVAL_BIC)
+    .min_by(|a, b| a.delta_bic.total_cmp(&b.delta_bic))
 }
 
 /// Runs the loop from the fit `outcome` of `problem`; `on_step` is told
@@ -261,5 +342,17 @@ pub fn discover(
             None => break,
         }
     }
-    Ok(Discovery { rungs, steps })
+    let (last, earlier) = steps.split_last().expect("the loop pushes a step");
+    let unneeded = unneeded(
+        &last.problem,
+        &last.outcome,
+        &last.diagnosis,
+        &first,
+        earlier,
+    );
+    Ok(Discovery {
+        rungs,
+        steps,
+        unneeded,
+    })
 }
