@@ -290,3 +290,65 @@ fn a_force_driven_fit_exports_its_spring_and_says_so() {
     );
     assert!(!quiet.contains("note:"), "{quiet}");
 }
+
+/// A precision report over a history the device cannot follow is no report:
+/// a ramp past Q15.16's range (32,768 mm) stops the q16 element, and the
+/// export fails naming it, the table written, instead of printing the error
+/// of the points before as the worst (found by review: "worst: 6.10e-5").
+/// And a table that cannot be written to standard output is an error.
+#[test]
+fn a_history_beyond_the_devices_range_fails_the_precision_report() {
+    let fit = write(
+        "ramp-fit.json",
+        r#"{"model": "bw", "k0": 0.6, "alpha": 0.2, "n": 1.2, "beta": 2, "gamma": -1,
+ "units": {"displacement": "mm", "force": "kN"}}"#,
+    );
+    let ramp: String = (0..=330).map(|i| format!("{}\n", 100 * i)).collect();
+    let history = write("ramp.csv", &format!("displacement (mm)\n{ramp}"));
+    let out = tmp("ramp.bin");
+    let args = ["export", &fit, "--format", "bin", "--scalar", "q16"];
+    let o = hyst(
+        &[
+            &args[..],
+            &["--history", &history, "--out", out.to_str().unwrap()],
+        ]
+        .concat(),
+    );
+    let e = stderr(&o);
+    assert!(!o.status.success(), "{e}");
+    assert!(
+        e.contains("in q16 the device cannot follow this history (element 0 after 327 points)"),
+        "{e}"
+    );
+    assert!(!e.contains("worst:"), "{e}");
+    assert!(out.exists(), "the table is written before the report");
+    // The same history in f32 is followed to the end.
+    let o = ok(hyst(
+        &[
+            &args[..4],
+            &[
+                "--scalar",
+                "f32",
+                "--history",
+                &history,
+                "--out",
+                out.to_str().unwrap(),
+            ],
+        ]
+        .concat(),
+    ));
+    assert!(stderr(&o).contains("worst: "), "{}", stderr(&o));
+
+    let full = std::fs::File::create("/dev/full").expect("/dev/full on Linux");
+    let o = Command::new(env!("CARGO_BIN_EXE_hyst"))
+        .args(["export", &fit, "--format", "bin"])
+        .stdout(full)
+        .output()
+        .unwrap();
+    assert!(!o.status.success());
+    assert!(
+        stderr(&o).contains("standard output: cannot write the table"),
+        "{}",
+        stderr(&o)
+    );
+}

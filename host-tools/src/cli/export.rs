@@ -88,7 +88,16 @@ pub fn run(args: ExportArgs) -> Result<()> {
         Some(p) => {
             std::fs::write(p, &out).with_context(|| format!("{}: cannot write", p.display()))?
         }
-        None => std::io::stdout().lock().write_all(&out)?,
+        // Flushed here: a binary table has no newline to flush it, and a
+        // failed write at exit would go unreported (rc 0, no table: found by
+        // review with `> /dev/full`).
+        None => {
+            let mut stdout = std::io::stdout().lock();
+            stdout
+                .write_all(&out)
+                .and_then(|_| stdout.flush())
+                .context("standard output: cannot write the table")?
+        }
     }
     eprintln!("{}", export::describe(&header));
     if args.scalar != ScalarKind::F64 {
@@ -175,6 +184,31 @@ fn report_precision(
         }
         worst = worst.max(p.relative());
     }
-    eprintln!("  worst: {worst:.2e} of peak force");
+    // A comparison cut short says nothing of the rest of the history: a q16
+    // element that could not follow it at all was reported "worst: 0.00e0"
+    // (found by review).
+    let device_stops: Vec<String> = results
+        .iter()
+        .enumerate()
+        .filter(|(_, p)| p.device_stopped)
+        .map(|(i, p)| format!("element {i} after {} points", p.points))
+        .collect();
+    if !device_stops.is_empty() {
+        bail!(
+            "the table is written, but in {} the device cannot follow this history ({}): its precision there is unknown; use f32 or f64, or a history within the arithmetic's range",
+            args.scalar.name(),
+            device_stops.join(", ")
+        );
+    }
+    if results.iter().all(|p| p.points == 0) {
+        eprintln!("  worst: not known: no point compared");
+        return Ok(());
+    }
+    match results.iter().any(|p| p.stopped.is_some()) {
+        true => eprintln!(
+            "  worst: {worst:.2e} of peak force, over the points compared (the f64 model itself stops where noted)"
+        ),
+        false => eprintln!("  worst: {worst:.2e} of peak force"),
+    }
     Ok(())
 }

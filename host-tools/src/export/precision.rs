@@ -53,6 +53,9 @@ pub struct Precision {
     /// Why the comparison stopped before the end of the history, if it did
     /// (a step either element refused, e.g. beyond `energy_limit`).
     pub stopped: Option<String>,
+    /// The exported element refused a step the `f64` one took: the device
+    /// cannot follow this history, and its precision over it is unknown.
+    pub device_stopped: bool,
 }
 
 impl Precision {
@@ -76,6 +79,7 @@ fn run<S: Scalar>(
         max_error: 0.0,
         points: 0,
         stopped: None,
+        device_stopped: false,
     };
     for (i, &x) in u.iter().enumerate().skip(1) {
         let stop = |who: &str, err| Some(format!("point {i} (u = {x}): the {who} element: {err}"));
@@ -90,6 +94,7 @@ fn run<S: Scalar>(
             Ok(e) => e,
             Err(err) => {
                 p.stopped = stop(S::NAME, err);
+                p.device_stopped = true;
                 break;
             }
         };
