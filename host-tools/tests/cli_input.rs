@@ -1369,6 +1369,33 @@ fn subtract_takes_a_zero_offset_off_a_channel_and_says_so() {
         serde_json::from_str(&std::fs::read_to_string(out).unwrap()).unwrap();
     assert_eq!(file["fit"]["subtract"]["force"], 0.7, "{file}");
     assert_eq!(file["fit"]["negate"][0], "displacement", "{file}");
+    // The verbs that line the fit up with its record say which of those options they are
+    // not given again, one note each, and say nothing once both are given.
+    for verb in ["diagnose", "sensitivity"] {
+        let mut args = vec![verb, &offset_path, "--params", out];
+        if verb == "diagnose" {
+            args.extend(["--candidates", "asymmetry"]);
+        }
+        let note = cli::stderr(&ok(hyst(
+            &[&args[..], &["--negate", "displacement"]].concat(),
+        )));
+        let unrepeated: Vec<&str> = note
+            .lines()
+            .filter(|l| l.contains("is not given here"))
+            .collect();
+        assert_eq!(unrepeated.len(), 1, "{verb}: {note}");
+        assert!(
+            unrepeated[0].contains("read with `--subtract force=0.7`"),
+            "{verb}: {note}"
+        );
+        let both = [
+            &args[..],
+            &["--negate", "displacement", "--subtract", "force=0.7"],
+        ]
+        .concat();
+        let note = cli::stderr(&ok(hyst(&both)));
+        assert!(!note.contains("is not given here"), "{verb}: {note}");
+    }
 }
 
 /// `--negate` flips a channel's sign as the record is read; a record that gives out energy (its

@@ -6,8 +6,10 @@
 //! `simulate`.
 
 use crate::data::{Channel, ColumnRef, ReadOptions, Role, Unit};
+use crate::model::ParamFile;
 use anyhow::{anyhow, bail, Result};
 use clap::Args;
+use serde_json::Value;
 
 /// A column named on the command line, with an optional unit:
 /// `D`, `D:cm`, `2`, `2:mm`.
@@ -123,6 +125,49 @@ pub struct ReadArgs {
 }
 
 impl ReadArgs {
+    /// The read options the fit in `file` recorded (`fit.subtract`,
+    /// `fit.negate`) that these arguments do not repeat, as notes: a verb that
+    /// compares a fit with its record would otherwise compare it with a record
+    /// read differently, without a word (found by review: a fit of NRMSE
+    /// 1.5e-10 read back at 0.113 with a force offset named).
+    pub fn unrepeated(&self, file: &ParamFile) -> Vec<String> {
+        let Some(fit) = &file.fit else {
+            return vec![];
+        };
+        let mut missing = vec![];
+        if let Some(Value::Array(names)) = fit.get("negate") {
+            for name in names.iter().filter_map(Value::as_str) {
+                if !self.negate.iter().any(|c| c.to_string() == name) {
+                    missing.push(format!("--negate {name}"));
+                }
+            }
+        }
+        if let Some(Value::Object(given)) = fit.get("subtract") {
+            for (name, value) in given {
+                let Some(value) = value.as_f64() else {
+                    continue;
+                };
+                if !self
+                    .subtract
+                    .iter()
+                    .any(|(c, v)| c.to_string() == *name && *v == value)
+                {
+                    missing.push(format!("--subtract {name}={value}"));
+                }
+            }
+        }
+        missing
+            .into_iter()
+            .map(|option| {
+                format!(
+                    "the fit in {} was made on a record read with `{option}`, which is not given here: \
+                     the record is read without it; give it again to compare the fit with what it was fitted to",
+                    file.path.display()
+                )
+            })
+            .collect()
+    }
+
     /// The read options these arguments ask for.
     pub fn options(&self) -> ReadOptions {
         let mut opts = ReadOptions::default().skip_rows(self.skip_rows);

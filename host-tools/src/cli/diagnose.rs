@@ -144,6 +144,9 @@ pub struct Initial {
 /// Fits (or evaluates the given parameters of) the model on the record.
 pub fn initial_fit(common: &Common, params: Option<&Path>, bar: &Bar) -> Result<Initial> {
     let file = params.map(ParamFile::read).transpose()?;
+    for note in file.iter().flat_map(|f| common.read.unrepeated(f)) {
+        eprintln!("note: {note}");
+    }
     let forcing = common.forcing.or_file(file.as_ref())?;
     // A fit of the oscillator carries its mass (kg), as `simulate` reads it.
     let mass = mass_of(common.mass, file.as_ref())?;

@@ -44,6 +44,9 @@ pub struct SensitivityArgs {
 /// Runs `hyst sensitivity`.
 pub fn run(args: SensitivityArgs) -> Result<()> {
     let file = ParamFile::read(&args.params)?;
+    for note in args.read.unrepeated(&file) {
+        eprintln!("note: {note}");
+    }
     let spec = file.spec(args.model)?;
     let forcing = args.forcing.or_file(Some(&file))?;
     // A fit of the oscillator carries its mass (kg), as `simulate` reads it.
