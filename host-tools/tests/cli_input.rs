@@ -935,6 +935,19 @@ fn an_output_that_would_overwrite_an_input_is_refused_first() {
         "{e}"
     );
     assert_eq!(std::fs::read_to_string(&record).unwrap(), column_record());
+    // The same file under a second name (a hard link) is the same input.
+    let link = cli::tmp("keep-link.csv");
+    std::fs::remove_file(&link).ok();
+    std::fs::hard_link(&record, &link).unwrap();
+    let link = link.to_str().unwrap();
+    let e = err(hyst(&[
+        "simulate", &record, "--params", &params, "--out", link,
+    ]));
+    assert!(
+        e.contains(&format!("--out {link}: that is the input {record}")),
+        "{e}"
+    );
+    assert_eq!(std::fs::read_to_string(&record).unwrap(), column_record());
     let fit = err(hyst(&[
         "fit", &record, "--model", "bw", "--params", &params, "--out", &params,
     ]));
