@@ -696,25 +696,59 @@ pub(crate) fn parse(file: &Path, text: &str, options: &ReadOptions) -> Result<Re
 
     let mut skipped = 0;
     let mut decimal_commas = 0;
+    // The first value of a column read written with a decimal comma, and the
+    // first with a decimal point: (line, column, text).
+    let read_columns: Vec<usize> = [&time, &step, &disp, &force]
+        .into_iter()
+        .flatten()
+        .map(|r| r.col.index)
+        .collect();
+    let (mut first_comma, mut first_point) = (None, None);
     for &(line, t) in rest {
-        let f: Vec<&str> = t.split(sep).collect();
-        if f.len() != width {
-            return Err(field_count(line, f.len()));
+        let raw: Vec<&str> = t.split(sep).collect();
+        if raw.len() != width {
+            return Err(field_count(line, raw.len()));
         }
         // Fields separated by `;` or tabs may write numbers with a decimal
         // comma (a spreadsheet's export in many locales).
         let points: Vec<String>;
-        let f: Vec<&str> = if sep != ',' && f.iter().any(|v| v.contains(',')) {
-            points = f.iter().map(|v| decimal_point(v)).collect();
-            decimal_commas += f
+        let f: Vec<&str> = if sep != ',' && raw.iter().any(|v| v.contains(',')) {
+            points = raw.iter().map(|v| decimal_point(v)).collect();
+            decimal_commas += raw
                 .iter()
                 .zip(&points)
                 .filter(|(a, b)| **a != b.as_str())
                 .count();
             points.iter().map(String::as_str).collect()
         } else {
-            f
+            raw.clone()
         };
+        if sep != ',' {
+            let written = |with: char| {
+                read_columns
+                    .iter()
+                    .find(|&&k| raw[k].contains(with) && f[k].parse::<f64>().is_ok())
+                    .map(|&k| (line, k + 1, raw[k].trim().to_string()))
+            };
+            first_comma = first_comma.or_else(|| written(','));
+            first_point = first_point.or_else(|| written('.'));
+        }
+        // A file that writes both, `1,5` and `1.000`, leaves `1.000` a
+        // thousand or a one (found by review: read as 1.0 without a word).
+        if let (Some(c), Some(p)) = (&first_comma, &first_point) {
+            let (at_line, at_column) = (c.0, c.1).max((p.0, p.1));
+            return Err(DataError::at(
+                file,
+                at_line,
+                at_column,
+                format!(
+                    "'{}' (line {}) is written with a decimal point and '{}' (line {}) with a \
+                     decimal comma: expected one of the two in a file (where commas are decimal, \
+                     a point can separate thousands)",
+                    p.2, p.0, c.2, c.0
+                ),
+            ));
+        }
         if skipped < options.skip_rows {
             skipped += 1;
             notices.push(Notice::SkippedRow {

@@ -38,7 +38,7 @@
 //! | `mr-damper-dyke/` | `"t","A","D","Y","fs","V","F",` no units | needs options: `role("D", Displacement).unit("D", Centimetre).role("F", Force).unit("F", Newton)` (`Y` and `V` look like displacement and force by name) |
 //! | `peer-spd-columns/raw_json/`, `cfs-fastener-peterman2014/`, `friction-damper-brfd/`, `steel-braces-simcenter/` | JSON | see [`json`] |
 //! | `boucwen-benchmark/original_mat/` | MATLAB `.mat` | not read: the CSV copies are lossless |
-//! | a spreadsheet's export (`.csv`, `.tsv`) | tabs or semicolons between fields, decimal comma | as is: the separator from a header without a comma, `1,5` read as 1.5 (a notice) |
+//! | a spreadsheet's export (`.csv`, `.tsv`) | tabs or semicolons between fields, decimal comma | as is: the separator from a header without a comma, `1,5` read as 1.5 (a notice); `1,5` and `1.000` in one file refused |
 //!
 //! # Cycles and branches
 //!

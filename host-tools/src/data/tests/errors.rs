@@ -393,6 +393,27 @@ fn semicolons_tabs_and_decimal_commas() {
             csv_error("s.csv", &bad, &d),
             "s.csv:3:1: expected a number for column 'displacement (mm)', found '1,5,0'"
         );
+        // Both ways in one file leave a point a decimal point or a thousands separator: refused
+        // where the second way first appears (found by review: `1.000` read as 1).
+        let mixed = format!("displacement (mm){sep}force (kN)\n0{sep}0\n1,5{sep}2\n1.000{sep}3\n");
+        assert_eq!(
+            csv_error("s.csv", &mixed, &d),
+            "s.csv:4:1: '1.000' (line 4) is written with a decimal point and '1,5' (line 3) with a decimal comma: expected one of the two in a file (where commas are decimal, a point can separate thousands)"
+        );
+        let mixed = format!("displacement (mm){sep}force (kN)\n0.5{sep}0\n1{sep}2,5\n");
+        assert_eq!(
+            csv_error("s.csv", &mixed, &d),
+            "s.csv:3:2: '0.5' (line 2) is written with a decimal point and '2,5' (line 3) with a decimal comma: expected one of the two in a file (where commas are decimal, a point can separate thousands)"
+        );
+        // Points alone are decimal points.
+        let points = format!("displacement (mm){sep}force (kN)\n0.5{sep}0\n1{sep}2.5\n");
+        assert_eq!(
+            read_str("s.csv", &points, Format::Csv, &d)
+                .unwrap()
+                .force()
+                .unwrap(),
+            &[0.0, 2.5]
+        );
     }
     // A comma in the header makes it a comma-separated file, where a decimal comma cannot be.
     let r = read_str(
