@@ -5,6 +5,7 @@
 use super::columns::ReadArgs;
 use super::fit::{given_point, load_timed, mass_of, parse_fix, Bar, Loaded};
 use super::ForcingArgs;
+use crate::data::Channel;
 use crate::discover::ladder::{unneeded, Unneeded};
 use crate::discover::offset::{self, OffsetCheck};
 use crate::discover::rate::{self, RateCheck};
@@ -226,6 +227,7 @@ impl Beyond {
         d: &Diagnosis,
         time: Option<&[f64]>,
         monotone: Option<Monotone>,
+        negated: &[Channel],
     ) -> Self {
         let displacement = problem.exp.drive == Drive::Displacement;
         let rate = match time {
@@ -240,7 +242,11 @@ impl Beyond {
             displacement_noise: monotone,
             gives_out_energy: displacement
                 .then(|| {
-                    objectives::gives_out_energy(problem.exp.displacement(), problem.exp.force())
+                    objectives::gives_out_energy(
+                        problem.exp.displacement(),
+                        problem.exp.force(),
+                        negated,
+                    )
                 })
                 .flatten(),
         }
@@ -440,7 +446,14 @@ pub fn run(args: DiagnoseArgs) -> Result<()> {
     let suspects = weigh(&problem, &outcome, &d, &options);
     bar.status("taking out the model's effects one at a time");
     let unneeded = unneeded(&problem, &outcome, &d, &problem.par.spec.effects(), &[]);
-    let mut beyond = Beyond::check(&problem, &outcome, &d, time.as_deref(), monotone);
+    let mut beyond = Beyond::check(
+        &problem,
+        &outcome,
+        &d,
+        time.as_deref(),
+        monotone,
+        &args.common.read.negate,
+    );
     (beyond.force_offset, beyond.start_offset) = offset::of_fit(&problem, &outcome, &d, &suspects);
     bar.finish();
     if let Some(path) = &args.common.report {

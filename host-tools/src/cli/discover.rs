@@ -59,6 +59,7 @@ pub fn run(args: DiscoverArgs) -> Result<()> {
         &last.diagnosis,
         time.as_deref(),
         monotone,
+        &args.common.read.negate,
     );
     beyond.slip = slip::of_ladder(&discovery, beyond.slip);
     (beyond.force_offset, beyond.start_offset) = offset::of_ladder(&discovery);

@@ -454,7 +454,9 @@ pub fn load_timed(
         exp = exp.with_forcing(between)?;
     }
     if exp.drive == Drive::Displacement {
-        if let Some(words) = objectives::gives_out_energy(exp.displacement(), exp.force()) {
+        if let Some(words) =
+            objectives::gives_out_energy(exp.displacement(), exp.force(), &read.negate)
+        {
             eprintln!("note: {}: {words}", path.display());
         }
     }

@@ -16,6 +16,7 @@
 //! * `nrmse = RMS(y - y_hat) / RMS(y)`.
 
 use super::experiment::{Experiment, Prediction};
+use crate::data::Channel;
 
 /// The default floor of the envelope weight, as a fraction of the peak.
 pub const ENVELOPE_FLOOR: f64 = 0.1;
@@ -113,14 +114,26 @@ pub const GIVES_OUT: f64 = 0.1;
 
 /// A sentence when the displacement-driven record `(u, f)` gives out energy (net work below
 /// `-GIVES_OUT` of the gross), `None` otherwise.
-pub fn gives_out_energy(u: &[f64], f: &[f64]) -> Option<String> {
+pub fn gives_out_energy(u: &[f64], f: &[f64], negated: &[Channel]) -> Option<String> {
     let (net, gross) = work(u, f);
+    // A record read with `--negate` is named so, not told to use it again
+    // (found by review).
+    let remedy = match negated {
+        [] => "`--negate force` flips it".to_string(),
+        _ => {
+            let given: Vec<String> = negated.iter().map(|c| format!("--negate {c}")).collect();
+            format!(
+                "it was read with `{}`: without it each channel has its sign as measured",
+                given.join(" ")
+            )
+        }
+    };
     (gross > 0.0 && net < -GIVES_OUT * gross).then(|| {
         format!(
             "the force does {net:.4e} kN mm of work on the displacement over the record, {:.0}% \
              of the {gross:.4e} it does in all: the record gives out energy, which no passive \
              specimen does, so the force or the displacement is likely of the wrong sign \
-             (`--negate force` flips it); the models here absorb energy and cannot follow it",
+             ({remedy}); the models here absorb energy and cannot follow it",
             100.0 * net / gross
         )
     })
@@ -275,19 +288,25 @@ mod tests {
         // Trapezoidal rule on 2,000 intervals: error O(h^2), about 1e-6 here.
         assert!((net - PI).abs() < 1e-5, "{net}");
         assert!((gross - PI).abs() < 1e-5, "{gross}");
-        assert!(gives_out_energy(&u, &f).is_none());
+        assert!(gives_out_energy(&u, &f, &[]).is_none());
         let flipped: Vec<f64> = f.iter().map(|f| -f).collect();
-        let words = gives_out_energy(&u, &flipped).expect("a flipped loop gives energy out");
-        assert!(words.contains("--negate force"), "{words}");
+        let words = gives_out_energy(&u, &flipped, &[]).expect("a flipped loop gives energy out");
+        assert!(words.contains("(`--negate force` flips it)"), "{words}");
+        // Read with `--negate` already, the note names it rather than suggesting it.
+        let words = gives_out_energy(&u, &flipped, &[Channel::Force]).unwrap();
+        assert!(
+            words.contains("(it was read with `--negate force`: without it each channel"),
+            "{words}"
+        );
         // An elastic record does no net work either way round: not flagged.
         let (u, f) = ellipse(0.0, 2.0);
         assert!(work(&u, &f).0.abs() < 1e-9);
-        assert!(gives_out_energy(&u, &f.iter().map(|f| -f).collect::<Vec<_>>()).is_none());
+        assert!(gives_out_energy(&u, &f.iter().map(|f| -f).collect::<Vec<_>>(), &[]).is_none());
         // A thin loop flipped gives out 5% of its gross work: below the threshold, not named.
         let (u, f) = ellipse(0.1, 2.0);
         let (net, gross) = work(&u, &f);
         assert!(net > 0.0 && net < GIVES_OUT * gross, "{net} {gross}");
-        assert!(gives_out_energy(&u, &f.iter().map(|f| -f).collect::<Vec<_>>()).is_none());
+        assert!(gives_out_energy(&u, &f.iter().map(|f| -f).collect::<Vec<_>>(), &[]).is_none());
     }
 
     #[test]
