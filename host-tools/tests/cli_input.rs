@@ -1343,7 +1343,7 @@ fn subtract_takes_a_zero_offset_off_a_channel_and_says_so() {
         e.contains("one offset to subtract from the displacement"),
         "{e}"
     );
-    for bad in ["twist=1", "force", "force=inf", "force=x"] {
+    for bad in ["rotation=1", "force", "force=inf", "force=x"] {
         let e = err(simulate(&[bad]));
         assert!(e.contains(bad), "{bad}: {e}");
     }
@@ -1355,6 +1355,20 @@ fn subtract_takes_a_zero_offset_off_a_channel_and_says_so() {
     let offset_path = write("offset.csv", &offset);
     let with_offset = fit_nrmse(&offset_path, &[]);
     let taken_off = fit_nrmse(&offset_path, &["--subtract", "force=0.7"]);
+    // An offset that swamps the values is named as the cause, written as the shortest number.
+    let e = err(hyst(&[
+        "fit",
+        &offset_path,
+        "--method",
+        "lsq",
+        "--subtract",
+        "force=1e300",
+    ]));
+    assert!(
+        e.contains("subtracting 1e300 kN from column")
+            && e.contains("leaves every sample the same"),
+        "{e}"
+    );
     // Measured: 0.0013 clean, 0.129 with the offset, 0.0019 with it taken off (the force
     // column rounded to 5 decimals after adding 0.7, and least squares from one start lands
     // elsewhere on this short record's flat valley: beta = gamma there).

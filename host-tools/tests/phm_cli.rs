@@ -151,6 +151,28 @@ fn simulate_writes_what_the_element_computes() {
     for (a, b) in r3.force().unwrap().iter().zip(&direct.torque) {
         assert!((a - b).abs() < 1e-9);
     }
+    // `twist` names the same channel; a torque the history lacks is called so.
+    let o4 = ok(hyst(&[
+        "simulate",
+        &shifted,
+        "--params",
+        &p,
+        "--subtract",
+        "twist=1",
+    ]));
+    assert_eq!(stdout_record(o4).force(), r3.force());
+    let e = err(hyst(&[
+        "simulate",
+        &shifted,
+        "--params",
+        &p,
+        "--subtract",
+        "torque=5",
+    ]));
+    assert!(
+        e.contains("cannot subtract 5.0 from the torque: the record has no torque"),
+        "{e}"
+    );
 }
 
 /// `clean` with deterministic noise of standard deviation 1: sums of 12

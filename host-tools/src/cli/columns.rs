@@ -58,12 +58,13 @@ fn parse_column_ref(text: &str) -> Result<ColumnRef> {
     Ok(c.column)
 }
 
-/// Parses `displacement` or `force` for `--negate`.
+/// Parses `displacement` or `force` for `--negate` (`twist` and `torque`,
+/// their names in a torsion record, are the same channels).
 pub fn parse_channel(text: &str) -> Result<Channel> {
     match text.trim() {
-        "displacement" => Ok(Channel::Displacement),
-        "force" => Ok(Channel::Force),
-        other => bail!("expected displacement or force, found `{other}`"),
+        "displacement" | "twist" => Ok(Channel::Displacement),
+        "force" | "torque" => Ok(Channel::Force),
+        other => bail!("expected displacement or force (twist or torque), found `{other}`"),
     }
 }
 
@@ -112,9 +113,9 @@ pub struct ReadArgs {
     #[arg(long)]
     pub raw_displacement: bool,
     /// Take a constant off every sample of a channel, in mm or kN (deg or
-    /// kN m for a torsion record): a known zero offset of an instrument, as
-    /// `hyst diagnose` names one, e.g. `--subtract force=0.73`. Once per
-    /// channel.
+    /// kN m for a torsion record, whose channels may be called `twist` and
+    /// `torque`): a known zero offset of an instrument, as `hyst diagnose`
+    /// names one, e.g. `--subtract force=0.73`. Once per channel.
     #[arg(long, value_name = "CHANNEL=VALUE", value_parser = parse_subtract)]
     pub subtract: Vec<(Channel, f64)>,
     /// Flip the sign of a channel (`displacement` or `force`), before any

@@ -47,12 +47,19 @@ impl Channel {
     }
 }
 
-impl fmt::Display for Channel {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(match self {
+impl Channel {
+    /// Its name: `displacement` or `force`.
+    pub fn name(self) -> &'static str {
+        match self {
             Channel::Displacement => "displacement",
             Channel::Force => "force",
-        })
+        }
+    }
+}
+
+impl fmt::Display for Channel {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
     }
 }
 
@@ -218,7 +225,7 @@ impl fmt::Display for Notice {
                 unit,
             } => write!(
                 f,
-                "column '{column}': {value} {unit} subtracted from every sample (read options)"
+                "column '{column}': {value:?} {unit} subtracted from every sample (read options)"
             ),
             Notice::Negated { column } => write!(
                 f,
@@ -478,16 +485,28 @@ impl Record {
     /// assert!(r.subtract(Channel::Force, 1.0).is_err());
     /// ```
     pub fn subtract(&mut self, channel: Channel, value: f64) -> Result<(), DataError> {
-        let series = self.series_to_change(channel, &format!("subtract {value} from"))?;
+        let series = self.series_to_change(channel, &format!("subtract {value:?} from"))?;
         if !value.is_finite() {
             return Err(DataError::file(
                 &self.source,
                 format!("expected a finite offset to subtract from the {channel}, found {value}"),
             ));
         }
+        let varied = series.values.iter().any(|v| *v != series.values[0]);
         series.values.iter_mut().for_each(|v| *v -= value);
         let unit = series.unit.quantity().canonical();
         let column = series.name.clone();
+        // An offset so large that the samples round to one value would be
+        // blamed on the record by the check below (found by review: 1e300).
+        if varied && series.values.iter().all(|v| *v == series.values[0]) {
+            return Err(DataError::file(
+                &self.source,
+                format!(
+                    "subtracting {value:?} {unit} from column '{column}' leaves every sample the same: \
+                     the offset swamps the values; expected an offset of the size of the record's"
+                ),
+            ));
+        }
         self.check()?;
         self.notices.push(Notice::Subtracted {
             column,
@@ -523,14 +542,21 @@ impl Record {
         channel: Channel,
         doing: &str,
     ) -> Result<&mut Series, DataError> {
+        let torsion = self.is_torsion();
         let series = match channel {
             Channel::Displacement => self.displacement.as_mut(),
             Channel::Force => self.force.as_mut(),
         };
+        // A torsion record's channels are twist and torque.
+        let name = match (torsion, channel) {
+            (true, Channel::Displacement) => "twist",
+            (true, Channel::Force) => "torque",
+            (false, c) => c.name(),
+        };
         series.ok_or_else(|| {
             DataError::file(
                 &self.source,
-                format!("cannot {doing} the {channel}: the record has no {channel}"),
+                format!("cannot {doing} the {name}: the record has no {name}"),
             )
         })
     }
