@@ -70,8 +70,13 @@ impl Common {
         } else {
             let mut list: Vec<EffectRef> = Vec::new();
             for n in &self.candidates {
-                let e = EffectRef::from_name(n.trim())
-                    .ok_or_else(|| anyhow!("unknown candidate effect `{n}`"))?;
+                let e = EffectRef::from_name(n.trim()).ok_or_else(|| {
+                    let known: Vec<&str> = EffectRef::all().iter().map(|e| e.name()).collect();
+                    anyhow!(
+                        "unknown candidate effect `{n}`: known effects are {}",
+                        known.join(", ")
+                    )
+                })?;
                 if list.contains(&e) {
                     bail!("candidate effect `{}` is given twice", e.name());
                 }

@@ -150,6 +150,16 @@ fn output(path: Option<&Path>) -> anyhow::Result<Box<dyn std::io::Write>> {
     })
 }
 
+/// Writes `columns` as CSV to the file `path`, or to standard output; a
+/// failed write names where (it said "cannot write" alone, found by review).
+fn write_csv(path: Option<&Path>, columns: &[(&str, &[f64])]) -> anyhow::Result<()> {
+    use anyhow::Context;
+    crate::data::write_columns(output(path)?, &[], columns).with_context(|| match path {
+        Some(p) => p.display().to_string(),
+        None => "standard output".to_string(),
+    })
+}
+
 impl Command {
     /// The files the command reads, and those it writes with the option that names each (an
     /// `fe --out` folder is created, and the files in it are the run's own).

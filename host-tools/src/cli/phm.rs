@@ -88,10 +88,10 @@ pub fn simulate(args: &SimulateArgs) -> Result<()> {
         });
         writeln!(std::io::stdout().lock(), "{}", serde_json::to_string(&obj)?)?;
         if let Some(p) = &args.out {
-            data::write_columns(super::output(Some(p))?, &[], &columns)?;
+            super::write_csv(Some(p), &columns)?;
         }
     } else {
-        data::write_columns(super::output(args.out.as_deref())?, &[], &columns)?;
+        super::write_csv(args.out.as_deref(), &columns)?;
     }
     if run.forgotten > 0 {
         eprintln!(

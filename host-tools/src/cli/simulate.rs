@@ -120,6 +120,9 @@ pub fn run(args: SimulateArgs) -> Result<()> {
         bail!("--json is for --model {PHM_MODEL}");
     }
     let spec = file.spec(spec)?;
+    for note in file.switched_off(spec) {
+        eprintln!("note: {note}");
+    }
     let mut opts = args.read.options();
     // A mass, or a fit of the oscillator (its file carries `m`), means the
     // force drives.
@@ -153,10 +156,8 @@ pub fn run(args: SimulateArgs) -> Result<()> {
         .ok_or_else(|| anyhow!("{}: no displacement column", args.history.display()))?;
     let sim =
         simulate(&params, &extras, u).map_err(|e| anyhow!("{}: {e}", args.history.display()))?;
-    let mut out = super::output(args.out.as_deref())?;
-    data::write_columns(
-        &mut out,
-        &[],
+    super::write_csv(
+        args.out.as_deref(),
         &[
             ("displacement", &sim.displacement),
             ("force", &sim.force),
@@ -241,10 +242,8 @@ fn forced(
             SimError::Step(..) => anyhow!("{src}: {e}"),
         })?;
     let time: Vec<f64> = (0..force.len()).map(|i| i as f64 * dt).collect();
-    let mut out = super::output(args.out.as_deref())?;
-    data::write_columns(
-        &mut out,
-        &[],
+    super::write_csv(
+        args.out.as_deref(),
         &[
             ("time", &time),
             ("force", force),

@@ -37,7 +37,8 @@ pub enum WriteError {
 impl fmt::Display for WriteError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
-            WriteError::Io(e) => write!(f, "cannot write: {e}"),
+            // The OS error is the source, which a chain of errors prints next.
+            WriteError::Io(_) => write!(f, "cannot write"),
             WriteError::BadHeader(h) => write!(
                 f,
                 "expected a non-empty header without commas, quotes or line breaks, found '{h}'"

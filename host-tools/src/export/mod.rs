@@ -96,6 +96,7 @@ pub fn read(paths: &[PathBuf]) -> Result<Sources> {
             // A force-driven fit also holds the test's mass and damping (thesis eq. 3.3); the
             // element is the hysteretic spring alone.
             let (p, _) = f.build(spec, true)?;
+            notes.extend(f.switched_off(spec));
             let dynamic: Vec<&str> = ["m", "xi"]
                 .into_iter()
                 .filter(|k| f.values.contains_key(*k))

@@ -118,6 +118,22 @@ pub fn render(bytes: &[u8], format: Format, name: &str, about: &[String]) -> Res
     if keywords.contains(&name) {
         bail!("--name {name:?} is a keyword of {language}: choose another name");
     }
+    // Names a C program cannot define for itself (found by review: `main`
+    // and `NULL` were accepted).
+    if format == Format::C {
+        let b = name.as_bytes();
+        let why = match name {
+            "main" => Some("the program's entry point"),
+            "NULL" => Some("a macro of the standard headers"),
+            _ if b.len() > 1 && b[0] == b'_' && (b[1] == b'_' || b[1].is_ascii_uppercase()) => Some(
+                "reserved to the implementation (an underscore and a capital, or two underscores)",
+            ),
+            _ => None,
+        };
+        if let Some(why) = why {
+            bail!("--name {name:?} is {why} in C: choose another name");
+        }
+    }
     let n = bytes.len();
     let mut s = String::new();
     match format {
@@ -177,6 +193,14 @@ mod tests {
         assert!(c.contains("static const uint8_t hyst_table[20] = {\n    0x00,"));
         assert!(c.trim_end().ends_with("#endif /* HYST_TABLE_H */"));
         assert!(render(&bytes, Format::C, "2x", &[]).is_err());
+        for reserved in ["main", "NULL", "__table", "_Table"] {
+            let e = render(&bytes, Format::C, reserved, &[])
+                .unwrap_err()
+                .to_string();
+            assert!(e.contains(" in C: choose another name"), "{reserved}: {e}");
+        }
+        assert!(render(&bytes, Format::C, "_table", &[]).is_ok());
+        assert!(render(&bytes, Format::Rust, "main", &[]).is_ok());
         assert_eq!(render(&bytes, Format::Bin, "", &[]).unwrap(), bytes);
     }
 }

@@ -405,7 +405,7 @@ fn evolve(problem: &Problem, evolution: &Evolution, progress: &dyn Progress) -> 
             }
             std::ops::ControlFlow::Continue(())
         })
-        .map_err(|e| anyhow!("NSGA-II: {e}"))?;
+        .map_err(|e| anyhow!("{e}"))?;
     let chosen = outcome.chosen().ok_or_else(|| {
         anyhow!("NSGA-II found no feasible parameter set (beta + gamma > 0, beta - gamma > 0)")
     })?;

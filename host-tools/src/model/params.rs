@@ -153,7 +153,8 @@ impl ParamFile {
                     )?;
                     file.units = Some((d, f));
                 }
-                ("fit", v) => file.fit = Some(v),
+                // What `hyst fit` records about the fit: an object.
+                ("fit", v @ Value::Object(_)) => file.fit = Some(v),
                 (k, v) if META.contains(&k) => bail!(
                     "{}: key \"{k}\" has the wrong type ({})",
                     at.at(&[k]),
@@ -193,6 +194,27 @@ impl ParamFile {
                 self.path.display()
             ),
         }
+    }
+
+    /// Notes for the effects of `spec` none of whose parameters the file
+    /// gives: they take the values that switch the effect off, which a file
+    /// naming the effect in its model most likely did not mean (it ran as
+    /// the model without it, without a word: found by review).
+    pub fn switched_off(&self, spec: ModelSpec) -> Vec<String> {
+        spec.effects()
+            .into_iter()
+            .filter(|e| e.params().iter().all(|p| !self.values.contains_key(p.name)))
+            .map(|e| {
+                let names: Vec<&str> = e.params().iter().map(|p| p.name).collect();
+                format!(
+                    "{}: model {spec} has {}, but none of its parameters ({}) is given: they take \
+                     the values that switch it off",
+                    self.path.display(),
+                    e.name(),
+                    names.join(", ")
+                )
+            })
+            .collect()
     }
 
     /// The model parameter set of `spec` (validated), rejecting names that do
@@ -317,6 +339,24 @@ mod tests {
     }
 
     #[test]
+    fn an_effect_given_without_any_of_its_parameters_is_named_switched_off() {
+        let f = parse(
+            r#"{"model": "bw+pinching+strength-degradation", "k0": 6, "alpha": 0.2, "n": 1.2,
+                "beta": 2, "gamma": -1, "delta_nu": 0.01}"#,
+        )
+        .unwrap();
+        let notes = f.switched_off(f.spec(None).unwrap());
+        assert_eq!(
+            notes,
+            [
+                "p.json: model bw+strength-degradation+pinching has pinching, but none of its \
+              parameters (zeta0, p, q, psi0, delta_psi, lambda) is given: they take the values \
+              that switch it off"
+            ]
+        );
+    }
+
+    #[test]
     fn errors_name_the_file_and_the_problem() {
         let msg = |t: &str| {
             parse(t)
@@ -346,6 +386,11 @@ mod tests {
         assert!(m.ends_with(", energy_limit"), "{m}");
         let m = msg(r#"{"k0": 6, "alpha": 1.2, "n": 1.2, "beta": 2, "gamma": -1}"#);
         assert_eq!(m, "p.json:1:20: alpha must lie in [0, 1]");
+        let m = msg(r#"{"k0": 6, "fit": "x"}"#);
+        assert!(
+            m.ends_with("key \"fit\" has the wrong type (a string)"),
+            "{m}"
+        );
         let m = msg(r#"{"k0": 6, "alpha": 0.2, "n": 1.2, "beta": 2}"#);
         assert_eq!(m, "p.json: gamma is required but missing");
         let m = parse(r#"{"model": "bwbn"}"#)

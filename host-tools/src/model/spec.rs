@@ -100,6 +100,7 @@ impl ModelSpec {
         let mut spec = match base {
             "bw" => ModelSpec::BW,
             "bwbn" => ModelSpec { effects: EffectSet::BWBN, ..ModelSpec::BW },
+            "" if text.contains('+') => bail!("`{text}` has no base: expected `bw` or `bwbn` before the +effect terms, e.g. `bw{}`", text.trim()),
             "" => bail!("empty model spec: expected a base, `bw` or `bwbn`, optionally followed by +effect terms"),
             other => bail!("unknown model base `{other}` in `{text}`: expected `bw` or `bwbn`"),
         };
@@ -112,7 +113,14 @@ impl ModelSpec {
                 );
             };
             if spec.contains(effect) {
-                bail!("effect `{name}` appears twice in `{text}` (`bwbn` already includes the four thesis effects)");
+                let thesis = base == "bwbn"
+                    && EffectSet::BWBN
+                        .iter()
+                        .any(|k| EffectRef::Builtin(k) == effect);
+                match thesis {
+                    true => bail!("effect `{name}` appears twice in `{text}`: `bwbn` already includes the four thesis effects"),
+                    false => bail!("effect `{name}` appears twice in `{text}`"),
+                }
             }
             spec = spec.with(effect);
         }
