@@ -391,7 +391,19 @@ pub fn print_diagnosis(
     // A range that stopped the fit leaves a misfit that the suspects then explain: a `k0` pinned
     // below the truth made `discover` name pinching on plain Bouc-Wen data (found by review).
     for at in outcome.at_bounds.iter().filter(|a| a.beyond_is_valid) {
-        outln!("  note: {at}; the suspects below judge the misfit this leaves.");
+        // A parameter of an effect the record does not need is not one the
+        // data want moved (the note invited --fix p=... for an absent
+        // pinching: found by review).
+        let owner = unneeded
+            .iter()
+            .find(|u| EffectRef::from_name(u.effect).is_some_and(|e| e.owns(at.name)));
+        match owner {
+            Some(u) => outln!(
+                "  note: {at}; but it belongs to {}, which the record does not need (below).",
+                u.effect
+            ),
+            None => outln!("  note: {at}; the suspects below judge the misfit this leaves."),
+        }
     }
     let words = beyond.record_words();
     if !words.is_empty() {

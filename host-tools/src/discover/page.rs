@@ -27,7 +27,12 @@ fn suspects_table(suspects: &[Suspect]) -> Result<Table> {
             s.effect.name().into(),
             (if s.significant { "yes" } else { "no" }).into(),
             s.nrmse_with.into(),
-            s.delta_bic.round().into(),
+            // A whole number, as the text gives it (four digits read "7.000":
+            // found by review); none for a model that could not be fitted.
+            match s.delta_bic.is_finite() {
+                true => (s.delta_bic.round() as i64).into(),
+                false => "".into(),
+            },
             s.evidence.clone().into(),
         ])?;
     }

@@ -596,7 +596,7 @@ pub fn weigh(
                     effect.name()
                 )),
                 Relation::Alone(best_gain) => evidence.push_str(&format!(
-                    "On its own it changes the BIC by {delta:+.0}; the best model found, {best_name} (NRMSE {best_nrmse:.4}), changes it by {best_gain:+.0} without it: not significant."
+                    "On its own it changes the BIC by {delta:+.0}; the best model found, {best_name} (NRMSE {best_nrmse:.4}), which does not hold it, changes it by {best_gain:+.0}: not significant."
                 )),
                 Relation::Unfitted => evidence.push_str("Not significant."),
                 // Unfitted (found by review: "changes the BIC by +inf").
