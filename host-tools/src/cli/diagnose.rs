@@ -212,6 +212,8 @@ pub struct Beyond {
     pub force_offset: Option<OffsetCheck>,
     /// A record that starts away from zero displacement ([`offset::start`]).
     pub start_offset: Option<OffsetCheck>,
+    /// A force whose zero drifts along the record ([`offset::drift`]).
+    pub force_drift: Option<OffsetCheck>,
     /// Noise in the displacement, made monotone between the test's reversals
     /// ([`crate::fit::input_noise::monotone`]): the loader decided, this
     /// reports it.
@@ -244,6 +246,7 @@ impl Beyond {
             slip: slip::check(d, &problem.exp.drive),
             force_offset: None,
             start_offset: None,
+            force_drift: None,
             displacement_noise: monotone,
             gives_out_energy: displacement
                 .then(|| {
@@ -255,6 +258,13 @@ impl Beyond {
                 })
                 .flatten(),
         }
+    }
+
+    /// Takes the zero-offset checks ([`offset::of_fit`], [`offset::of_ladder`]).
+    pub fn set_offsets(&mut self, offsets: offset::Offsets) {
+        self.force_offset = offsets.force;
+        self.start_offset = offsets.start;
+        self.force_drift = offsets.drift;
     }
 
     /// What the record itself shows: the energy it gives out, what the
@@ -290,9 +300,14 @@ impl Beyond {
             .start_offset
             .as_ref()
             .map(|o| ("start away from rest", o.significant, o.evidence.as_str()));
+        let drift = self
+            .force_drift
+            .as_ref()
+            .map(|o| ("force drift", o.significant, o.evidence.as_str()));
         rate.into_iter()
             .chain(slip)
             .chain(force)
+            .chain(drift)
             .chain(start)
             .collect()
     }
@@ -367,6 +382,7 @@ pub fn diagnosis_json(
         "slip": beyond.slip,
         "force_offset": beyond.force_offset,
         "start_offset": beyond.start_offset,
+        "force_drift": beyond.force_drift,
         "displacement_noise": beyond.displacement_noise,
         "gives_out_energy": beyond.gives_out_energy,
     })
@@ -471,7 +487,7 @@ pub fn run(args: DiagnoseArgs) -> Result<()> {
         monotone,
         &args.common.read.negate,
     );
-    (beyond.force_offset, beyond.start_offset) = offset::of_fit(&problem, &outcome, &d, &suspects);
+    beyond.set_offsets(offset::of_fit(&problem, &outcome, &d, &suspects));
     bar.finish();
     if let Some(path) = &args.common.report {
         let mut report = Report::new(&format!("Diagnosis of {}", args.common.data.display()));

@@ -62,7 +62,7 @@ pub fn run(args: DiscoverArgs) -> Result<()> {
         &args.common.read.negate,
     );
     beyond.slip = slip::of_ladder(&discovery, beyond.slip);
-    (beyond.force_offset, beyond.start_offset) = offset::of_ladder(&discovery);
+    beyond.set_offsets(offset::of_ladder(&discovery));
     bar.finish();
     if let Some(path) = &args.plot {
         let fig = page::ladder_figure(&discovery.rungs)?;

@@ -4,7 +4,7 @@
 //! offset of 3% of the peak was added to `bw` as asymmetry at a BIC change of
 //! -386, and a displacement offset left pinching named on an irregular path).
 //!
-//! Two checks on displacement-driven fits, each weighed like a suspect (see
+//! Checks on displacement-driven fits, each weighed like a suspect (see
 //! [`suspects`](super::suspects)): BIC at the larger of the suspects'
 //! effective sample size (that of the best model they found, so that offsets
 //! and effects are on one scale) and that of the residual with the offset
@@ -42,8 +42,15 @@
 //!   `alpha k0 u0`, a constant force. Where the start is named the force
 //!   check is not named on its own: the jump leaves a constant of its own.
 //!
-//! The force check does not refit the model with the offset removed, so its
-//! gain is a lower bound of what a refit finds; `--subtract` (see the
+//! * **A drifting force zero.** A load cell warming up or creeping reads a
+//!   zero that moves along the test. The check fits a straight line in the
+//!   sample number to the residual (two numbers) and names it where it is
+//!   significant, adds a BIC change below -10 to a constant alone, fits at
+//!   least as well as asymmetry refitted, and the start is not named
+//!   ([`drift`]).
+//!
+//! The force checks do not refit the model with the offset removed, so their
+//! gains are lower bounds of what a refit finds; `--subtract` (see the
 //! README) removes a known offset from the record before fitting.
 //!
 //! Measured on the synthetic base (`tests/discover_offset.rs`): a force
@@ -79,6 +86,8 @@ pub enum Offset {
     Force,
     /// The record starts at a displacement other than zero.
     Start,
+    /// The force's zero drifts along the record.
+    Drift,
 }
 
 /// What the record says about one zero offset.
@@ -92,7 +101,8 @@ pub struct OffsetCheck {
     /// Named: see the module docs for the rule.
     pub significant: bool,
     /// The offset: the constant the measured force reads above the model's
-    /// (force units, kN), or the first displacement (mm).
+    /// (force units, kN), the first displacement (mm), or for a drift how
+    /// far the force's zero moves from the first sample to the last (kN).
     pub value: f64,
     /// The offset as a fraction of the record's peak force or displacement.
     pub relative: f64,
@@ -350,6 +360,106 @@ pub fn force(
     })
 }
 
+/// Looks for a drifting force zero (a load cell warming up or creeping) in
+/// the residual of the displacement-driven fit of `model`, diagnosed as `d`
+/// with NRMSE `nrmse`, whose candidates were weighed as `suspects`: a
+/// straight line in the sample number fitted to the residual. Named when it
+/// is significant as the offsets are, adds a BIC change below -10 to a
+/// constant alone (a constant offset is [`force`]'s), fits at least as well
+/// as the model refitted with asymmetry (which otherwise stands in for it:
+/// a drift of 1% of the peak force over a test was added as asymmetry at a
+/// BIC change of -485, found by review), and the start is not named.
+pub fn drift(
+    model: &str,
+    d: &Diagnosis,
+    nrmse: f64,
+    suspects: &[Suspect],
+    start_named: bool,
+) -> Option<OffsetCheck> {
+    let r = &d.residual;
+    let n = r.len();
+    if n < 3 {
+        return None;
+    }
+    // Least squares of r against s = k / (n - 1), k the sample number.
+    let s: Vec<f64> = (0..n).map(|k| k as f64 / (n - 1) as f64).collect();
+    let (mr, ms) = (mean(r), mean(&s));
+    let sss: f64 = s.iter().map(|s| (s - ms).powi(2)).sum();
+    let ssr: f64 = s.iter().zip(r).map(|(s, r)| (s - ms) * (r - mr)).sum();
+    let slope = ssr / sss;
+    let after: Vec<f64> = s
+        .iter()
+        .zip(r)
+        .map(|(s, r)| r - mr - slope * (s - ms))
+        .collect();
+    let constant: Vec<f64> = r.iter().map(|r| r - mr).collect();
+    let scale = scale_of(suspects);
+    let gain = Gain::of(d, nrmse, r, &after, 2, scale)?;
+    let beyond_constant = Gain::of(d, nrmse, &constant, &after, 1, scale)?;
+    // The measured force is the model's less the residual: its zero moves by
+    // -slope over the record.
+    let value = -slope;
+    let relative = value / peak(&d.force);
+    let asymmetry = suspects
+        .iter()
+        .find(|s| is_asymmetry(s) && s.nrmse_with.is_finite())
+        .map(|s| s.nrmse_with);
+    let at_least_as_good = asymmetry.is_none_or(|a| gain.nrmse_with <= a);
+    let significant = gain.significant()
+        && beyond_constant.delta_bic < SIGNIFICANT_BIC
+        && at_least_as_good
+        && !start_named;
+    let mut evidence = format!(
+        "The measured force's zero moves by {value:+.4} kN ({:+.1}% of its peak) from the first \
+         sample to the last, against the model's (a straight line in time fitted to the residual); \
+         taking the line off takes {}, a BIC change of {:+.0} beyond a constant alone.",
+        100.0 * relative,
+        gain.words(nrmse),
+        beyond_constant.delta_bic
+    );
+    evidence.push(' ');
+    evidence.push_str(&if significant {
+        match asymmetry {
+            Some(a) => format!(
+                "Asymmetry, refitted, reaches {a:.4}: no better than these two numbers, which are \
+                 not parameters of the model. A load cell whose zero drifts (warming up, creep) \
+                 looks like unequal strength in the two directions: check the instrument before \
+                 trusting an effect named for it."
+            ),
+            None => {
+                "No effect of the library drifts with time: check the load cell's zero (warming \
+                     up, creep) before trusting an effect named for it."
+                    .to_string()
+            }
+        }
+    } else if !gain.significant() {
+        gain.not_significant()
+    } else if beyond_constant.delta_bic >= SIGNIFICANT_BIC {
+        "Not named: a constant explains it as well (the force offset, above).".into()
+    } else if start_named {
+        "Not named: the record starts away from rest (below), whose refit it would meet.".into()
+    } else {
+        format!(
+            "Not named: asymmetry, refitted, reaches {:.4}, better than a drift does.",
+            asymmetry.unwrap_or(f64::NAN)
+        )
+    });
+    Some(OffsetCheck {
+        offset: Offset::Drift,
+        model: model.to_string(),
+        significant,
+        value,
+        relative,
+        with_force: None,
+        share: gain.share,
+        nrmse_with: gain.nrmse_with,
+        delta_bic: gain.delta_bic,
+        n_eff: gain.n_eff,
+        asymmetry_nrmse: asymmetry,
+        evidence,
+    })
+}
+
 /// First displacements below this fraction of the peak are not checked: a
 /// jump that small cannot matter, and a record taken off by `--subtract`
 /// keeps a rounding residue (found by review: 4.5e-5 mm refitted in full).
@@ -458,36 +568,50 @@ pub fn start(
     })
 }
 
-/// Both checks on one diagnosed fit (`hyst diagnose`): `(force, start)`.
+/// The checks of one record: a force offset, a start away from rest, a
+/// drifting force zero.
+#[derive(Clone, Debug, Default)]
+pub struct Offsets {
+    /// [`force`].
+    pub force: Option<OffsetCheck>,
+    /// [`start`].
+    pub start: Option<OffsetCheck>,
+    /// [`drift`].
+    pub drift: Option<OffsetCheck>,
+}
+
+/// The checks on one diagnosed fit (`hyst diagnose`).
 pub fn of_fit(
     problem: &Problem,
     outcome: &Outcome,
     d: &Diagnosis,
     suspects: &[Suspect],
-) -> (Option<OffsetCheck>, Option<OffsetCheck>) {
+) -> Offsets {
     if problem.exp.drive != Drive::Displacement {
-        return (None, None);
+        return Offsets::default();
     }
     let model = problem.par.spec.to_string();
     let start = start(problem, outcome, d, suspects);
     let named = start.as_ref().is_some_and(|s| s.significant);
-    (
-        force(&model, d, outcome.scores.nrmse, suspects, named),
+    let nrmse = outcome.scores.nrmse;
+    Offsets {
+        force: force(&model, d, nrmse, suspects, named),
+        drift: drift(&model, d, nrmse, suspects, named),
         start,
-    )
+    }
 }
 
-/// Both checks along a discovery: the force offset on the step from which
+/// The checks along a discovery: the force offset and drift on the step from which
 /// the ladder added asymmetry (where it was the strongest significant
 /// suspect), else on the final model; the start on the first model, before
 /// any effect could stand in for it, and on the final one, whose whiter
 /// residual weighs it more surely, keeping the stronger evidence (a record
 /// with a force and a displacement offset and degradation hidden: delta-BIC
 /// -9 on `bw`, found by review).
-pub fn of_ladder(discovery: &Discovery) -> (Option<OffsetCheck>, Option<OffsetCheck>) {
+pub fn of_ladder(discovery: &Discovery) -> Offsets {
     let first = &discovery.steps[0];
     if first.problem.exp.drive != Drive::Displacement {
-        return (None, None);
+        return Offsets::default();
     }
     let asymmetric = discovery.steps.iter().find(|s| {
         s.suspects
@@ -507,14 +631,12 @@ pub fn of_ladder(discovery: &Discovery) -> (Option<OffsetCheck>, Option<OffsetCh
         .flatten()
         .min_by(|a, b| a.delta_bic.total_cmp(&b.delta_bic));
     let named = start.as_ref().is_some_and(|s| s.significant);
-    let force = force(
-        &on.spec.to_string(),
-        &on.diagnosis,
-        on.outcome.scores.nrmse,
-        &on.suspects,
-        named,
-    );
-    (force, start)
+    let (model, nrmse) = (on.spec.to_string(), on.outcome.scores.nrmse);
+    Offsets {
+        force: force(&model, &on.diagnosis, nrmse, &on.suspects, named),
+        drift: drift(&model, &on.diagnosis, nrmse, &on.suspects, named),
+        start,
+    }
 }
 
 fn is_asymmetry(s: &Suspect) -> bool {
