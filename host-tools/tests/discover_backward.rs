@@ -8,7 +8,7 @@
 #[path = "support/cli.rs"]
 mod cli;
 
-use cli::{hyst, ok, write};
+use cli::{hyst, ok, write_record};
 use hyst::discover::ladder::{redundant, unneeded, Step};
 use hyst::discover::synthetic::{record, Noise, Path};
 use hyst::fit::problem::Problem;
@@ -85,16 +85,7 @@ fn an_effect_the_record_lacks_is_taken_away_and_one_it_holds_is_kept() {
 fn diagnose_names_a_given_effect_the_record_does_not_need() {
     for (hidden, name) in [(vec![], "plain"), (vec![EffectKind::Pinching], "pinched")] {
         let exp = record(&hidden, Path::StepWise, Noise::LOW, 3).unwrap();
-        let rows: String = exp
-            .input
-            .iter()
-            .zip(&exp.output)
-            .map(|(u, f)| format!("{u},{f}\n"))
-            .collect();
-        let csv = write(
-            &format!("{name}.csv"),
-            &format!("displacement (mm),force (kN)\n{rows}"),
-        );
+        let csv = write_record(&format!("{name}.csv"), &exp);
         let spec = ModelSpec::BW.with(PINCHING).to_string();
         // Weighing no candidate keeps the test to the one removal.
         let args = [

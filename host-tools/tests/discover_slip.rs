@@ -12,7 +12,7 @@
 mod cli;
 #[path = "support/shared_records.rs"]
 mod shared_records;
-use cli::{hyst, ok, write};
+use cli::{hyst, ok, write_record};
 use hyst::discover::slip::{self, SlipCheck};
 use hyst::discover::synthetic::{record, record_with_gap, Noise, Path};
 use hyst::discover::{Diagnosis, Discovery, Step};
@@ -109,13 +109,7 @@ fn the_shared_synthetic_records_have_no_slip() {
 #[test]
 fn hyst_diagnose_names_the_gap_in_text_and_json() {
     let exp = record_with_gap(0.5, Path::StepWise, Noise::LOW, 8).unwrap();
-    let rows: String = exp
-        .input
-        .iter()
-        .zip(&exp.output)
-        .map(|(u, f)| format!("{u},{f}\n"))
-        .collect();
-    let csv = write("gap.csv", &format!("displacement (mm),force (kN)\n{rows}"));
+    let csv = write_record("gap.csv", &exp);
     let args = [
         "diagnose",
         &csv,

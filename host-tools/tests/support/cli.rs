@@ -48,3 +48,15 @@ pub fn write(name: &str, text: &str) -> String {
     std::fs::write(&p, text).unwrap();
     p.to_str().unwrap().to_string()
 }
+
+/// Writes a displacement-driven record (`input` mm, `output` kN) as the CSV
+/// `name` in the scratch folder; returns the path as an argument for `hyst`.
+pub fn write_record(name: &str, exp: &hyst::fit::experiment::Experiment) -> String {
+    let rows: String = exp
+        .input
+        .iter()
+        .zip(&exp.output)
+        .map(|(u, f)| format!("{u},{f}\n"))
+        .collect();
+    write(name, &format!("displacement (mm),force (kN)\n{rows}"))
+}
