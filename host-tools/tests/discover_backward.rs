@@ -8,9 +8,9 @@
 #[path = "support/cli.rs"]
 mod cli;
 
-use cli::{hyst, ok, write_record};
+use cli::{hyst, ok, write, write_record};
 use hyst::discover::ladder::{redundant, unneeded, Step};
-use hyst::discover::synthetic::{record, Noise, Path};
+use hyst::discover::synthetic::{hidden_values, record, Noise, Path, BASE};
 use hyst::fit::problem::Problem;
 use hyst::fit::run::{self, Method, Quiet};
 use hyst::model::{EffectRef, ModelSpec};
@@ -117,6 +117,25 @@ fn diagnose_names_a_given_effect_the_record_does_not_need() {
             );
         } else {
             assert!(named.is_empty(), "{name}: {v}");
+            // Given parameters are not fitted, and each removal is: a poor given set (k0 at
+            // 80% of the truth) made a decisive pinching "not needed" (found by review), so
+            // `--params` weighs no removal.
+            let mut given: Vec<String> = BASE
+                .iter()
+                .chain(hidden_values(EffectKind::Pinching))
+                .map(|(k, v)| match *k {
+                    "k0" => format!("\"k0\": {}", 0.8 * v),
+                    _ => format!("\"{k}\": {v}"),
+                })
+                .collect();
+            given.push(format!("\"model\": \"{spec}\""));
+            let params = write("poor.json", &format!("{{{}}}", given.join(", ")));
+            let json = ok(hyst(
+                &[&args[..], &["--params", &params, "--json"]].concat(),
+            ))
+            .stdout;
+            let v: serde_json::Value = serde_json::from_slice(&json).unwrap();
+            assert_eq!(v["not_needed"], serde_json::json!([]), "{name}: {v}");
         }
     }
 }

@@ -170,7 +170,7 @@ fn simulate_writes_what_the_element_computes() {
         "torque=5",
     ]));
     assert!(
-        e.contains("cannot subtract 5.0 from the torque: the record has no torque"),
+        e.contains("cannot subtract 5 from the torque: the record has no torque"),
         "{e}"
     );
 }

@@ -143,30 +143,47 @@ impl ReadArgs {
                 }
             }
         }
-        if let Some(Value::Object(given)) = fit.get("subtract") {
-            for (name, value) in given {
-                let Some(value) = value.as_f64() else {
-                    continue;
-                };
-                if !self
-                    .subtract
-                    .iter()
-                    .any(|(c, v)| c.to_string() == *name && *v == value)
-                {
-                    missing.push(format!("--subtract {name}={value}"));
+        let mut notes = vec![];
+        match fit.get("subtract") {
+            Some(Value::Object(given)) => {
+                for (name, value) in given {
+                    let Some(value) = value.as_f64() else {
+                        notes.push(format!(
+                            "{}: `fit.subtract.{name}` is {value}, not a number: not compared with \
+                             this command's --subtract",
+                            file.path.display()
+                        ));
+                        continue;
+                    };
+                    let here = self.subtract.iter().find(|(c, _)| c.to_string() == *name);
+                    match here {
+                        Some((_, v)) if *v == value => {}
+                        // Another value is given: said as such, not as none (found
+                        // by review).
+                        Some((_, v)) => notes.push(format!(
+                            "the fit in {} was made on a record read with `--subtract {name}={value}`; \
+                             this command gives `--subtract {name}={v}` instead",
+                            file.path.display()
+                        )),
+                        None => missing.push(format!("--subtract {name}={value}")),
+                    }
                 }
             }
+            Some(other) => notes.push(format!(
+                "{}: `fit.subtract` is {other}, not an object of offsets: not compared with this \
+                 command's --subtract",
+                file.path.display()
+            )),
+            None => {}
         }
-        missing
-            .into_iter()
-            .map(|option| {
-                format!(
-                    "the fit in {} was made on a record read with `{option}`, which is not given here: \
-                     the record is read without it; give it again to compare the fit with what it was fitted to",
-                    file.path.display()
-                )
-            })
-            .collect()
+        notes.extend(missing.into_iter().map(|option| {
+            format!(
+                "the fit in {} was made on a record read with `{option}`, which is not given here: \
+                 the record is read without it; give it again to compare the fit with what it was fitted to",
+                file.path.display()
+            )
+        }));
+        notes
     }
 
     /// The read options these arguments ask for.

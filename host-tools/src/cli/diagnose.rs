@@ -415,7 +415,10 @@ pub fn print_diagnosis(
             .find(|u| EffectRef::from_name(u.effect).is_some_and(|e| e.owns(at.name)));
         match owner {
             Some(u) => outln!(
-                "  note: {at}; but it belongs to {}, which the record does not need (below).",
+                "  note: {} stopped at the {} end of its search range ({:.6e}); it belongs to {}, which the record does not need (below).",
+                at.name,
+                at.end,
+                at.value,
                 u.effect
             ),
             None => outln!("  note: {at}; the suspects below judge the misfit this leaves."),
@@ -477,8 +480,15 @@ pub fn run(args: DiagnoseArgs) -> Result<()> {
     let d = Diagnosis::new(&problem, &outcome)?;
     bar.status("weighing the candidate effects");
     let suspects = weigh(&problem, &outcome, &d, &options);
-    bar.status("taking out the model's effects one at a time");
-    let unneeded = unneeded(&problem, &outcome, &d, &problem.par.spec.effects(), &[]);
+    // Each removal is refitted, so the model it is weighed against must be
+    // fitted too: given parameters (`--params`) are not, and a poor given
+    // set made a decisive pinching "not needed" (found by review).
+    let unneeded = if args.params.is_some() {
+        vec![]
+    } else {
+        bar.status("taking out the model's effects one at a time");
+        unneeded(&problem, &outcome, &d, &problem.par.spec.effects(), &[])
+    };
     let mut beyond = Beyond::check(
         &problem,
         &outcome,

@@ -723,6 +723,14 @@ pub(crate) fn parse(file: &Path, text: &str, options: &ReadOptions) -> Result<Re
         } else {
             raw.clone()
         };
+        if skipped < options.skip_rows {
+            skipped += 1;
+            notices.push(Notice::SkippedRow {
+                at: format!("line {line}"),
+                text: t.trim().to_string(),
+            });
+            continue;
+        }
         if sep != ',' {
             let written = |with: char| {
                 read_columns
@@ -734,7 +742,8 @@ pub(crate) fn parse(file: &Path, text: &str, options: &ReadOptions) -> Result<Re
             first_point = first_point.or_else(|| written('.'));
         }
         // A file that writes both, `1,5` and `1.000`, leaves `1.000` a
-        // thousand or a one (found by review: read as 1.0 without a word).
+        // thousand or a one (found by review: read as 1.0 without a word);
+        // rows skipped by the read options aside.
         if let (Some(c), Some(p)) = (&first_comma, &first_point) {
             let (at_line, at_column) = (c.0, c.1).max((p.0, p.1));
             return Err(DataError::at(
@@ -748,14 +757,6 @@ pub(crate) fn parse(file: &Path, text: &str, options: &ReadOptions) -> Result<Re
                     p.2, p.0, c.2, c.0
                 ),
             ));
-        }
-        if skipped < options.skip_rows {
-            skipped += 1;
-            notices.push(Notice::SkippedRow {
-                at: format!("line {line}"),
-                text: t.trim().to_string(),
-            });
-            continue;
         }
         for r in [&mut time, &mut step, &mut disp, &mut force]
             .into_iter()

@@ -47,6 +47,19 @@ impl Channel {
     }
 }
 
+/// How many times a channel's largest value an offset to subtract may be.
+const SWAMPING: f64 = 1e6;
+
+/// `v` in few characters: plain between 1e-4 and 1e6, else with an exponent
+/// (an offset of 1e15 printed sixteen digits: found by review).
+fn short(v: f64) -> String {
+    if v == 0.0 || (1e-4..1e6).contains(&v.abs()) {
+        format!("{v}")
+    } else {
+        format!("{v:e}")
+    }
+}
+
 impl Channel {
     /// Its name: `displacement` or `force`.
     pub fn name(self) -> &'static str {
@@ -225,7 +238,8 @@ impl fmt::Display for Notice {
                 unit,
             } => write!(
                 f,
-                "column '{column}': {value:?} {unit} subtracted from every sample (read options)"
+                "column '{column}': {} {unit} subtracted from every sample (read options)",
+                short(*value)
             ),
             Notice::Negated { column } => write!(
                 f,
@@ -485,11 +499,30 @@ impl Record {
     /// assert!(r.subtract(Channel::Force, 1.0).is_err());
     /// ```
     pub fn subtract(&mut self, channel: Channel, value: f64) -> Result<(), DataError> {
-        let series = self.series_to_change(channel, &format!("subtract {value:?} from"))?;
+        let source = self.source.clone();
+        let series = self.series_to_change(channel, &format!("subtract {} from", short(value)))?;
         if !value.is_finite() {
             return Err(DataError::file(
                 &self.source,
                 format!("expected a finite offset to subtract from the {channel}, found {value}"),
+            ));
+        }
+        // An instrument's zero offset is of the size of the record's values;
+        // one a million times larger leaves them a few digits (found by
+        // review: 1e16 kN accepted, the fit then at NRMSE 1).
+        let largest = series.values.iter().fold(0.0f64, |a, v| a.max(v.abs()));
+        if value.abs() > SWAMPING * largest {
+            let unit = series.unit.quantity().canonical();
+            return Err(DataError::file(
+                &source,
+                format!(
+                    "an offset of {} {unit} to subtract from column '{}' is more than {} times its \
+                     largest value ({} {unit}): expected an offset of the size of the record's values",
+                    short(value),
+                    series.name,
+                    short(SWAMPING),
+                    short(largest)
+                ),
             ));
         }
         let varied = series.values.iter().any(|v| *v != series.values[0]);
@@ -502,8 +535,9 @@ impl Record {
             return Err(DataError::file(
                 &self.source,
                 format!(
-                    "subtracting {value:?} {unit} from column '{column}' leaves every sample the same: \
-                     the offset swamps the values; expected an offset of the size of the record's"
+                    "subtracting {} {unit} from column '{column}' leaves every sample the same: \
+                     the offset swamps the values; expected an offset of the size of the record's",
+                    short(value)
                 ),
             ));
         }

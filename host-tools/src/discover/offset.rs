@@ -68,7 +68,7 @@ use super::suspects::{effective_n, Suspect, SIGNIFICANT_BIC};
 use crate::fit::experiment::Drive;
 use crate::fit::problem::Problem;
 use crate::fit::run::{self, Method, Outcome, Quiet};
-use crate::model::EffectRef;
+use crate::model::{EffectRef, ModelSpec};
 use hysteresis::bwbn::EffectKind;
 use serde::Serialize;
 
@@ -370,12 +370,14 @@ pub fn force(
 /// a drift of 1% of the peak force over a test was added as asymmetry at a
 /// BIC change of -485, found by review), and the start is not named.
 pub fn drift(
-    model: &str,
+    spec: ModelSpec,
     d: &Diagnosis,
     nrmse: f64,
     suspects: &[Suspect],
     start_named: bool,
 ) -> Option<OffsetCheck> {
+    let model = spec.to_string();
+    let in_model = spec.contains(EffectRef::Builtin(EffectKind::Asymmetry));
     let r = &d.residual;
     let n = r.len();
     if n < 3 {
@@ -404,16 +406,28 @@ pub fn drift(
         .iter()
         .find(|s| is_asymmetry(s) && s.nrmse_with.is_finite())
         .map(|s| s.nrmse_with);
+    // Real asymmetry leaves a residual a line can follow on paths of growing
+    // amplitude: without asymmetry weighed, or in the model, there is nothing
+    // to hold the line against (with `--candidates` leaving it out, a hidden
+    // asymmetry was named a drift of 11% of the peak: found by review).
+    let asymmetry_known = asymmetry.is_some() || in_model;
     let at_least_as_good = asymmetry.is_none_or(|a| gain.nrmse_with <= a);
     let significant = gain.significant()
         && beyond_constant.delta_bic < SIGNIFICANT_BIC
+        && asymmetry_known
         && at_least_as_good
         && !start_named;
+    // Where the line puts the zero at the first and the last sample (a
+    // constant offset beside the drift shows in the first: found by review).
+    let zero = |s: f64| -(mr + slope * (s - ms));
     let mut evidence = format!(
         "The measured force's zero moves by {value:+.4} kN ({:+.1}% of its peak) from the first \
-         sample to the last, against the model's (a straight line in time fitted to the residual); \
-         taking the line off takes {}, a BIC change of {:+.0} beyond a constant alone.",
+         sample to the last, against the model's (a straight line in time fitted to the residual: \
+         {:+.4} kN at the first sample, {:+.4} kN at the last); taking the line off takes {}, a BIC \
+         change of {:+.0} beyond a constant alone.",
         100.0 * relative,
+        zero(0.0),
+        zero(1.0),
         gain.words(nrmse),
         beyond_constant.delta_bic
     );
@@ -438,6 +452,10 @@ pub fn drift(
         "Not named: a constant explains it as well (the force offset, above).".into()
     } else if start_named {
         "Not named: the record starts away from rest (below), whose refit it would meet.".into()
+    } else if !asymmetry_known {
+        "Not named: asymmetry, which can stand in for a drift on a test of growing amplitude, \
+         was not weighed (add it to --candidates to compare)."
+            .into()
     } else {
         format!(
             "Not named: asymmetry, refitted, reaches {:.4}, better than a drift does.",
@@ -446,7 +464,7 @@ pub fn drift(
     });
     Some(OffsetCheck {
         offset: Offset::Drift,
-        model: model.to_string(),
+        model,
         significant,
         value,
         relative,
@@ -596,7 +614,7 @@ pub fn of_fit(
     let nrmse = outcome.scores.nrmse;
     Offsets {
         force: force(&model, d, nrmse, suspects, named),
-        drift: drift(&model, d, nrmse, suspects, named),
+        drift: drift(problem.par.spec, d, nrmse, suspects, named),
         start,
     }
 }
@@ -634,7 +652,7 @@ pub fn of_ladder(discovery: &Discovery) -> Offsets {
     let (model, nrmse) = (on.spec.to_string(), on.outcome.scores.nrmse);
     Offsets {
         force: force(&model, &on.diagnosis, nrmse, &on.suspects, named),
-        drift: drift(&model, &on.diagnosis, nrmse, &on.suspects, named),
+        drift: drift(on.spec, &on.diagnosis, nrmse, &on.suspects, named),
         start,
     }
 }

@@ -204,8 +204,11 @@ fn strength(d: &Diagnosis) -> Signature {
         if !sentence.is_empty() {
             sentence.push_str("; ");
         }
+        // A sentence of its own where no repeated cycles came first (it
+        // began in lower case: found by review).
+        let the = if sentence.is_empty() { "The" } else { "the" };
         sentence.push_str(&format!(
-            "the model's peak force is {:+.0}% off the measured in the first third of the cycles and {:+.0}% in the last",
+            "{the} model's peak force is {:+.0}% off the measured in the first third of the cycles and {:+.0}% in the last",
             100.0 * (early - 1.0),
             100.0 * (late - 1.0)
         ));

@@ -118,16 +118,32 @@ pub fn render(bytes: &[u8], format: Format, name: &str, about: &[String]) -> Res
     if keywords.contains(&name) {
         bail!("--name {name:?} is a keyword of {language}: choose another name");
     }
-    // Names a C program cannot define for itself (found by review: `main`
-    // and `NULL` were accepted).
+    // Names a C program cannot define for itself, or that the header's own
+    // `#include <stdint.h>` and include guard (`NAME_H`, upper case) break
+    // (found by review: `main`, `NULL`, `uint8_t`, `INT8_MAX` and `_stdint`,
+    // whose guard `_STDINT_H` is glibc's, were accepted).
     if format == Format::C {
-        let b = name.as_bytes();
+        let upper = name.to_ascii_uppercase();
+        let stdint_macro = [
+            "INT",
+            "UINT",
+            "SIZE_",
+            "PTRDIFF_",
+            "SIG_ATOMIC_",
+            "WCHAR_",
+            "WINT_",
+        ]
+        .iter()
+        .any(|p| upper.starts_with(p))
+            && (upper.ends_with("_MAX") || upper.ends_with("_MIN") || upper.ends_with("_C"));
         let why = match name {
             "main" => Some("the program's entry point"),
             "NULL" => Some("a macro of the standard headers"),
-            _ if b.len() > 1 && b[0] == b'_' && (b[1] == b'_' || b[1].is_ascii_uppercase()) => Some(
-                "reserved to the implementation (an underscore and a capital, or two underscores)",
+            _ if name.starts_with('_') => Some(
+                "reserved to the implementation (its include guard would begin with an underscore and a capital)",
             ),
+            _ if name.ends_with("_t") => Some("a type name (`_t` names are reserved by POSIX and stdint.h)"),
+            _ if stdint_macro => Some("a macro of stdint.h"),
             _ => None,
         };
         if let Some(why) = why {
@@ -193,13 +209,15 @@ mod tests {
         assert!(c.contains("static const uint8_t hyst_table[20] = {\n    0x00,"));
         assert!(c.trim_end().ends_with("#endif /* HYST_TABLE_H */"));
         assert!(render(&bytes, Format::C, "2x", &[]).is_err());
-        for reserved in ["main", "NULL", "__table", "_Table"] {
+        for reserved in [
+            "main", "NULL", "__table", "_Table", "_stdint", "uint8_t", "INT8_MAX", "UINT64_C",
+        ] {
             let e = render(&bytes, Format::C, reserved, &[])
                 .unwrap_err()
                 .to_string();
             assert!(e.contains(" in C: choose another name"), "{reserved}: {e}");
         }
-        assert!(render(&bytes, Format::C, "_table", &[]).is_ok());
+        assert!(render(&bytes, Format::C, "table_2", &[]).is_ok());
         assert!(render(&bytes, Format::Rust, "main", &[]).is_ok());
         assert_eq!(render(&bytes, Format::Bin, "", &[]).unwrap(), bytes);
     }

@@ -405,6 +405,10 @@ fn semicolons_tabs_and_decimal_commas() {
             csv_error("s.csv", &mixed, &d),
             "s.csv:3:2: '0.5' (line 2) is written with a decimal point and '2,5' (line 3) with a decimal comma: expected one of the two in a file (where commas are decimal, a point can separate thousands)"
         );
+        // A row the read options skip does not count.
+        let skipped = format!("displacement (mm){sep}force (kN)\n9.9{sep}0\n1,5{sep}2\n");
+        let r = read_str("s.csv", &skipped, Format::Csv, &d.clone().skip_rows(1)).unwrap();
+        assert_eq!(r.displacement().unwrap(), &[1.5]);
         // Points alone are decimal points.
         let points = format!("displacement (mm){sep}force (kN)\n0.5{sep}0\n1{sep}2.5\n");
         assert_eq!(
