@@ -557,6 +557,10 @@ fn values_the_arithmetic_cannot_hold_are_refused_by_name() {
 #[test]
 fn a_fit_that_cannot_start_names_the_record_and_the_sample() {
     let data = write("column-as-forced.csv", &column_record());
+    // A time column named and a sample rate that replaces it: two answers, refused (it took
+    // the rate with a note).
+    let e = err(hyst(&["fit", &data, "--time", "1", "--sample-rate", "1"]));
+    assert!(e.contains("cannot be used with '--sample-rate"), "{e}");
     let e = err(hyst(&["fit", &data, "--mass", "500", "--sample-rate", "1"]));
     assert!(
         e.contains("column-as-forced.csv: the mass of 5e2 kg is too small for this record")

@@ -98,8 +98,9 @@ pub struct ReadArgs {
     /// Read this column as the force: `--force F:N`.
     #[arg(long, value_name = "COLUMN[:UNIT]", value_parser = parse_column)]
     pub force: Option<ColumnArg>,
-    /// Read this column as the time: `--time t:s`.
-    #[arg(long, value_name = "COLUMN[:UNIT]", value_parser = parse_column)]
+    /// Read this column as the time: `--time t:s` (not with `--sample-rate`,
+    /// which replaces the time column: two answers to one question).
+    #[arg(long, value_name = "COLUMN[:UNIT]", value_parser = parse_column, conflicts_with = "sample_rate")]
     pub time: Option<ColumnArg>,
     /// Do not read this column (one the header suggests wrongly); repeatable.
     #[arg(long, value_name = "COLUMN", value_parser = parse_column_ref)]
