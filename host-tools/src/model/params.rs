@@ -196,14 +196,17 @@ impl ParamFile {
         }
     }
 
-    /// Notes for the effects of `spec` none of whose parameters the file
+    /// Notes for the effects of `spec` that have parameters, none of which the file
     /// gives: they take the values that switch the effect off, which a file
     /// naming the effect in its model most likely did not mean (it ran as
     /// the model without it, without a word: found by review).
     pub fn switched_off(&self, spec: ModelSpec) -> Vec<String> {
         spec.effects()
             .into_iter()
-            .filter(|e| e.params().iter().all(|p| !self.values.contains_key(p.name)))
+            .filter(|e| {
+                !e.params().is_empty()
+                    && e.params().iter().all(|p| !self.values.contains_key(p.name))
+            })
             .map(|e| {
                 let names: Vec<&str> = e.params().iter().map(|p| p.name).collect();
                 format!(
