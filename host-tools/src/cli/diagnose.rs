@@ -415,10 +415,8 @@ pub fn print_diagnosis(
             .find(|u| EffectRef::from_name(u.effect).is_some_and(|e| e.owns(at.name)));
         match owner {
             Some(u) => outln!(
-                "  note: {} stopped at the {} end of its search range ({:.6e}); it belongs to {}, which the record does not need (below).",
-                at.name,
-                at.end,
-                at.value,
+                "  note: {}; it belongs to {}, which the record does not need (below).",
+                at.stopped(),
                 u.effect
             ),
             None => outln!("  note: {at}; the suspects below judge the misfit this leaves."),

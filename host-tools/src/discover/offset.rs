@@ -242,13 +242,27 @@ fn early_reading(r: &[f64], u: &[f64]) -> Option<(f64, usize)> {
     if !(lo <= 0.0 && hi >= 0.0) && lo.abs().min(hi.abs()) > 0.1 * limit {
         return None;
     }
-    let (mr, mu) = (mean(r), mean(u));
-    let suu: f64 = u.iter().map(|u| (u - mu).powi(2)).sum();
-    let sur: f64 = u.iter().zip(r).map(|(u, r)| (u - mu) * (r - mr)).sum();
+    let (mr, mu, slope) = line(u, r);
     if n < 3 || hi - lo <= 1e-9 * limit {
         return Some((mr, n));
     }
-    Some((mr - sur / suu * mu, n))
+    Some((mr - slope * mu, n))
+}
+
+/// The least-squares line of `y` against `x`: the means of `y` and `x` and
+/// the slope (not finite where `x` does not vary).
+fn line(x: &[f64], y: &[f64]) -> (f64, f64, f64) {
+    let (my, mx) = (mean(y), mean(x));
+    let sxx: f64 = x.iter().map(|x| (x - mx).powi(2)).sum();
+    let sxy: f64 = x.iter().zip(y).map(|(x, y)| (x - mx) * (y - my)).sum();
+    (my, mx, sxy / sxx)
+}
+
+/// The asymmetry suspect, where the suspects weighed and fitted it.
+fn asymmetry_refit(suspects: &[Suspect]) -> Option<&Suspect> {
+    suspects
+        .iter()
+        .find(|s| is_asymmetry(s) && s.nrmse_with.is_finite())
 }
 
 fn peak(x: &[f64]) -> f64 {
@@ -278,10 +292,7 @@ pub fn force(
     let relative = value / peak(&d.force);
     // The constant and asymmetry explain the same lopsided residual: the
     // offset is named only where it explains it at least as well.
-    let asymmetry = suspects
-        .iter()
-        .find(|s| is_asymmetry(s) && s.nrmse_with.is_finite())
-        .map(|s| (s.nrmse_with, s.significant));
+    let asymmetry = asymmetry_refit(suspects).map(|s| (s.nrmse_with, s.significant));
     let at_least_as_good = asymmetry.is_none_or(|(a, _)| gain.nrmse_with <= a);
     // An instrument's zero is off from the first sample on: before the
     // loading leaves the elastic start the residual shows the constant too. A
@@ -385,10 +396,7 @@ pub fn drift(
     }
     // Least squares of r against s = k / (n - 1), k the sample number.
     let s: Vec<f64> = (0..n).map(|k| k as f64 / (n - 1) as f64).collect();
-    let (mr, ms) = (mean(r), mean(&s));
-    let sss: f64 = s.iter().map(|s| (s - ms).powi(2)).sum();
-    let ssr: f64 = s.iter().zip(r).map(|(s, r)| (s - ms) * (r - mr)).sum();
-    let slope = ssr / sss;
+    let (mr, ms, slope) = line(&s, r);
     let after: Vec<f64> = s
         .iter()
         .zip(r)
@@ -402,10 +410,7 @@ pub fn drift(
     // -slope over the record.
     let value = -slope;
     let relative = value / peak(&d.force);
-    let asymmetry = suspects
-        .iter()
-        .find(|s| is_asymmetry(s) && s.nrmse_with.is_finite())
-        .map(|s| s.nrmse_with);
+    let asymmetry = asymmetry_refit(suspects).map(|s| s.nrmse_with);
     // Real asymmetry leaves a residual a line can follow on paths of growing
     // amplitude: without asymmetry weighed, or in the model, there is nothing
     // to hold the line against (with `--candidates` leaving it out, a hidden

@@ -212,15 +212,26 @@ pub struct AtBound {
     pub beyond_is_valid: bool,
 }
 
+impl AtBound {
+    /// Where a parameter whose range the model does not limit stopped: the
+    /// first clause of its note.
+    pub fn stopped(&self) -> String {
+        format!(
+            "{} stopped at the {} end of its search range ({:.6e})",
+            self.name, self.end, self.value
+        )
+    }
+}
+
 impl std::fmt::Display for AtBound {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         let (name, end, value) = (self.name, self.end, self.value);
         if self.beyond_is_valid {
             write!(
                 f,
-                "{name} stopped at the {end} end of its search range ({value:.6e}); the model \
-                 allows values beyond it and the data may want one (--fix {name}=VALUE fits the \
-                 rest there)"
+                "{}; the model allows values beyond it and the data may want one (--fix \
+                 {name}=VALUE fits the rest there)",
+                self.stopped()
             )
         } else {
             write!(
