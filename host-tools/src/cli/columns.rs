@@ -139,7 +139,7 @@ impl ReadArgs {
         let mut missing = vec![];
         if let Some(Value::Array(names)) = fit.get("negate") {
             for name in names.iter().filter_map(Value::as_str) {
-                if !self.negate.iter().any(|c| c.to_string() == name) {
+                if !self.negate.iter().any(|c| c.name() == name) {
                     missing.push(format!("--negate {name}"));
                 }
             }
@@ -156,7 +156,7 @@ impl ReadArgs {
                         ));
                         continue;
                     };
-                    let here = self.subtract.iter().find(|(c, _)| c.to_string() == *name);
+                    let here = self.subtract.iter().find(|(c, _)| c.name() == name);
                     match here {
                         Some((_, v)) if *v == value => {}
                         // Another value is given: said as such, not as none (found
