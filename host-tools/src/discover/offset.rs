@@ -427,9 +427,9 @@ pub fn drift(
     let zero = |s: f64| -(mr + slope * (s - ms));
     let mut evidence = format!(
         "The measured force's zero moves by {value:+.4} kN ({:+.1}% of its peak) from the first \
-         sample to the last, against the model's (a straight line in time fitted to the residual: \
-         {:+.4} kN at the first sample, {:+.4} kN at the last); taking the line off takes {}, a BIC \
-         change of {:+.0} beyond a constant alone.",
+         sample to the last, against the model's (a straight line in the sample number fitted to \
+         the residual: {:+.4} kN at the first sample, {:+.4} kN at the last); taking the line off \
+         takes {}, a BIC change of {:+.0} beyond a constant alone.",
         100.0 * relative,
         zero(0.0),
         zero(1.0),
