@@ -1429,6 +1429,114 @@ fn subtract_takes_a_zero_offset_off_a_channel_and_says_so() {
     }
 }
 
+/// `--lag` realigns a force read a sample late (as `hyst diagnose` names it) as the record is
+/// read, says so, is recorded in the fit file as the force's lag whichever channel was named,
+/// and is refused where it cannot mean anything.
+#[test]
+fn lag_realigns_a_channel_read_out_of_step_and_says_so() {
+    let clean = column_record();
+    let rows: Vec<&str> = clean.lines().collect();
+    // The force column one sample late: each row's force is the row before's.
+    let mut late = format!("{}\n", rows[0]);
+    for k in 1..rows.len() {
+        let u = rows[k].split(',').next().unwrap();
+        let f = rows[k.saturating_sub(1).max(1)].split(',').nth(1).unwrap();
+        late += &format!("{u},{f}\n");
+    }
+    let clean_nrmse = lsq_fit(&write("in-step.csv", &clean), &[]).0;
+    let late_path = write("late.csv", &late);
+    let as_read = lsq_fit(&late_path, &[]).0;
+    let (realigned, note) = lsq_fit(&late_path, &["--lag", "force=1"]);
+    assert!(
+        note.contains("column 'force_kN' read 1 sample late")
+            && note.contains("its first 1 sample and the last 1 of 'disp_mm' dropped"),
+        "{note}"
+    );
+    // Measured: 0.00134 in step, 0.0266 one sample late, 0.00134 realigned.
+    assert!(as_read > 10.0 * clean_nrmse, "{as_read} {clean_nrmse}");
+    assert!(realigned < 2.0 * clean_nrmse, "{realigned} {clean_nrmse}");
+    // The displacement read a sample early is the same realignment, to the last bit.
+    let (same, _) = lsq_fit(&late_path, &["--lag", "displacement=-1"]);
+    assert_eq!(same, realigned);
+
+    let out = tmp("late-fit.json");
+    let out = out.to_str().unwrap();
+    ok(hyst(&[
+        "fit",
+        &late_path,
+        "--method",
+        "lsq",
+        "--lag",
+        "displacement=-1",
+        "--out",
+        out,
+    ]));
+    let file: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out).unwrap()).unwrap();
+    assert_eq!(file["fit"]["lag"]["force"], 1, "{file}");
+    let diagnose = |extra: &[&str]| {
+        let args = [
+            &[
+                "diagnose",
+                &late_path,
+                "--params",
+                out,
+                "--candidates",
+                "asymmetry",
+            ],
+            extra,
+        ]
+        .concat();
+        cli::stderr(&ok(hyst(&args)))
+    };
+    let note = diagnose(&[]);
+    assert!(
+        note.contains("read with `--lag force=1`, which is not given here"),
+        "{note}"
+    );
+    let note = diagnose(&["--lag", "force=2"]);
+    assert!(
+        note.contains("read with `--lag force=1`; this command gives `--lag force=2` instead"),
+        "{note}"
+    );
+    assert!(!diagnose(&["--lag", "force=1"]).contains("--lag"));
+
+    let samples = rows.len() - 1;
+    let e = err(hyst(&[
+        "fit",
+        &late_path,
+        "--lag",
+        &format!("force={samples}"),
+    ]));
+    assert!(
+        e.contains("late.csv")
+            && e.contains(&format!(
+                "a lag of {samples} samples between 'force_kN' and 'disp_mm' leaves fewer than 2 \
+                 of the record's {samples} samples: expected a lag of at most {}",
+                samples - 2
+            )),
+        "{e}"
+    );
+    let history = write("no-force.csv", "displacement (mm)\n0.5\n1.0\n1.5\n");
+    let params = write("bw.json", BW);
+    let e = err(hyst(&[
+        "simulate", &history, "--params", &params, "--lag", "force=1",
+    ]));
+    assert!(
+        e.contains("no-force.csv")
+            && e.contains("cannot realign the force: the record has no force"),
+        "{e}"
+    );
+    for bad in ["force=1.5", "rotation=1", "force", "force=x"] {
+        let e = err(hyst(&["fit", &late_path, "--lag", bad]));
+        assert!(e.contains(bad), "{bad}: {e}");
+    }
+    let e = err(hyst(&[
+        "fit", &late_path, "--lag", "force=1", "--lag", "force=2",
+    ]));
+    assert!(e.contains("--lag"), "{e}");
+}
+
 /// `--negate` flips a channel's sign as the record is read; a record that gives out energy (its
 /// force flipped) is named in a note by the fitting verbs, and fitted with `--negate force` it is
 /// the record as measured, to the last bit.

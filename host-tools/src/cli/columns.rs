@@ -84,6 +84,29 @@ pub fn parse_subtract(text: &str) -> Result<(Channel, f64)> {
     Ok((channel, value))
 }
 
+/// Parses `CHANNEL=SAMPLES` for `--lag`: `force=1` (the force reads one
+/// sample late), `displacement=-2`.
+pub fn parse_lag(text: &str) -> Result<(Channel, i64)> {
+    let (name, value) = text
+        .split_once('=')
+        .ok_or_else(|| anyhow!("`{text}`: expected force=SAMPLES or displacement=SAMPLES"))?;
+    let channel = parse_channel(name).map_err(|e| anyhow!("`{text}`: {e} before `=`"))?;
+    let samples: i64 = value.trim().parse().map_err(|_| {
+        anyhow!("`{text}`: `{value}` is not a whole number of samples (negative: early)")
+    })?;
+    Ok((channel, samples))
+}
+
+/// The samples the force reads late against the displacement for `--lag
+/// CHANNEL=SAMPLES` (`displacement=1` is `force=-1`), as a fit file records
+/// it.
+pub fn force_lag((channel, samples): (Channel, i64)) -> i64 {
+    match channel {
+        Channel::Force => samples,
+        Channel::Displacement => samples.saturating_neg(),
+    }
+}
+
 /// How to read the record (CSV; a JSON layout fixes its columns).
 #[derive(Clone, Debug, Default, Args)]
 pub struct ReadArgs {
@@ -124,11 +147,18 @@ pub struct ReadArgs {
     /// verbs suspect when a record gives out energy. Once per channel.
     #[arg(long, value_name = "CHANNEL", value_parser = parse_channel)]
     pub negate: Vec<Channel>,
+    /// A channel that reads this many samples late against the other
+    /// (negative: early), realigned: each of its samples is paired with the
+    /// other's that many before and the unpaired samples at the ends are
+    /// dropped. Two acquisition systems out of step, as `hyst diagnose` names
+    /// them, e.g. `--lag force=1`.
+    #[arg(long, value_name = "CHANNEL=SAMPLES", value_parser = parse_lag)]
+    pub lag: Option<(Channel, i64)>,
 }
 
 impl ReadArgs {
     /// The read options the fit in `file` recorded (`fit.subtract`,
-    /// `fit.negate`) that these arguments do not repeat, as notes: a verb that
+    /// `fit.negate`, `fit.lag`) that these arguments do not repeat, as notes: a verb that
     /// compares a fit with its record would otherwise compare it with a record
     /// read differently, without a word (found by review: a fit of NRMSE
     /// 1.5e-10 read back at 0.113 with a force offset named).
@@ -177,6 +207,46 @@ impl ReadArgs {
             )),
             None => {}
         }
+        match fit.get("lag") {
+            Some(Value::Object(given)) => {
+                for (name, value) in given {
+                    let Some(value) = value.as_i64() else {
+                        notes.push(format!(
+                            "{}: `fit.lag.{name}` is {value}, not a whole number: not compared \
+                             with this command's --lag",
+                            file.path.display()
+                        ));
+                        continue;
+                    };
+                    let Ok(channel) = parse_channel(name) else {
+                        notes.push(format!(
+                            "{}: `fit.lag.{name}` names no channel: not compared with this \
+                             command's --lag",
+                            file.path.display()
+                        ));
+                        continue;
+                    };
+                    let here = self.lag.map(force_lag).unwrap_or(0);
+                    let there = force_lag((channel, value));
+                    match self.lag {
+                        _ if here == there => {}
+                        Some((c, v)) => notes.push(format!(
+                            "the fit in {} was made on a record read with `--lag {name}={value}`; \
+                             this command gives `--lag {}={v}` instead",
+                            file.path.display(),
+                            c.name()
+                        )),
+                        None => missing.push(format!("--lag {name}={value}")),
+                    }
+                }
+            }
+            Some(other) => notes.push(format!(
+                "{}: `fit.lag` is {other}, not an object of one channel's lag: not compared with \
+                 this command's --lag",
+                file.path.display()
+            )),
+            None => {}
+        }
         notes.extend(missing.into_iter().map(|option| {
             format!(
                 "the fit in {} was made on a record read with `{option}`, which is not given here: \
@@ -213,6 +283,9 @@ impl ReadArgs {
         }
         for &(channel, value) in &self.subtract {
             opts = opts.subtract(channel, value);
+        }
+        if let Some((channel, samples)) = self.lag {
+            opts = opts.lag(channel, samples);
         }
         opts
     }

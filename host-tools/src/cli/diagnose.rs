@@ -7,6 +7,7 @@ use super::fit::{given_point, load_timed, mass_of, parse_fix, Bar, Loaded};
 use super::ForcingArgs;
 use crate::data::Channel;
 use crate::discover::ladder::{unneeded, Unneeded};
+use crate::discover::lag::{self, LagCheck};
 use crate::discover::offset::{self, OffsetCheck};
 use crate::discover::rate::{self, RateCheck};
 use crate::discover::slip::{self, SlipCheck};
@@ -214,6 +215,9 @@ pub struct Beyond {
     pub start_offset: Option<OffsetCheck>,
     /// A force whose zero drifts along the record ([`offset::drift`]).
     pub force_drift: Option<OffsetCheck>,
+    /// The force and the displacement read out of step ([`lag::of_fit`],
+    /// [`lag::of_ladder`]): displacement-driven records.
+    pub lag: Option<LagCheck>,
     /// Noise in the displacement, made monotone between the test's reversals
     /// ([`crate::fit::input_noise::monotone`]): the loader decided, this
     /// reports it.
@@ -247,6 +251,7 @@ impl Beyond {
             force_offset: None,
             start_offset: None,
             force_drift: None,
+            lag: None,
             displacement_noise: monotone,
             gives_out_energy: displacement
                 .then(|| {
@@ -265,6 +270,23 @@ impl Beyond {
         self.force_offset = offsets.force;
         self.start_offset = offsets.start;
         self.force_drift = offsets.drift;
+    }
+
+    /// Takes the check for a lag between the channels ([`lag::of_fit`],
+    /// [`lag::of_ladder`]). A named lag leaves a residual that follows the
+    /// speed of loading as well (a force one sample late was flagged as rate
+    /// dependence: found by review), which the rate check's evidence then
+    /// says.
+    pub fn set_lag(&mut self, lag: Option<LagCheck>) {
+        if let (Some(l), Some(r)) = (&lag, &mut self.rate) {
+            if l.significant && r.significant {
+                r.evidence.push_str(
+                    " A lag between the channels (below) leaves a residual that follows the \
+                     speed as well: realign them and look again before modelling this.",
+                );
+            }
+        }
+        self.lag = lag;
     }
 
     /// What the record itself shows: the energy it gives out, what the
@@ -304,11 +326,16 @@ impl Beyond {
             .force_drift
             .as_ref()
             .map(|o| ("force drift", o.significant, o.evidence.as_str()));
+        let lag = self
+            .lag
+            .as_ref()
+            .map(|l| ("channel lag", l.significant, l.evidence.as_str()));
         rate.into_iter()
             .chain(slip)
             .chain(force)
             .chain(drift)
             .chain(start)
+            .chain(lag)
             .collect()
     }
 
@@ -383,6 +410,7 @@ pub fn diagnosis_json(
         "force_offset": beyond.force_offset,
         "start_offset": beyond.start_offset,
         "force_drift": beyond.force_drift,
+        "channel_lag": beyond.lag,
         "displacement_noise": beyond.displacement_noise,
         "gives_out_energy": beyond.gives_out_energy,
     })
@@ -496,6 +524,12 @@ pub fn run(args: DiagnoseArgs) -> Result<()> {
         &args.common.read.negate,
     );
     beyond.set_offsets(offset::of_fit(&problem, &outcome, &d, &suspects));
+    // A realignment is refitted, so, as for the removals above, the fit it
+    // is weighed against must be fitted too.
+    if args.params.is_none() {
+        bar.status("realigning the channels");
+        beyond.set_lag(lag::of_fit(&problem, &outcome, &d, &suspects));
+    }
     bar.finish();
     if let Some(path) = &args.common.report {
         let mut report = Report::new(&format!("Diagnosis of {}", args.common.data.display()));

@@ -7,7 +7,7 @@ use super::diagnose::{
 };
 use super::fit::Bar;
 use crate::discover::{discover, page};
-use crate::discover::{offset, slip};
+use crate::discover::{lag, offset, slip};
 use crate::fit::run::Progress;
 use anyhow::{Context, Result};
 use clap::Args;
@@ -63,6 +63,8 @@ pub fn run(args: DiscoverArgs) -> Result<()> {
     );
     beyond.slip = slip::of_ladder(&discovery, beyond.slip);
     beyond.set_offsets(offset::of_ladder(&discovery));
+    bar.status("realigning the channels");
+    beyond.set_lag(lag::of_ladder(&discovery));
     bar.finish();
     if let Some(path) = &args.plot {
         let fig = page::ladder_figure(&discovery.rungs)?;

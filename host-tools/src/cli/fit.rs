@@ -1,6 +1,6 @@
 //! `hyst fit DATA --model SPEC`: parameters of a model from a lab record.
 
-use super::columns::ReadArgs;
+use super::columns::{force_lag, ReadArgs};
 use super::{ForcingArgs, ModelArg};
 use crate::data;
 use crate::fit::experiment::{Between, Drive, Experiment, Prediction, SimError};
@@ -625,6 +625,11 @@ pub fn run(args: FitArgs) -> Result<()> {
             .map(|(c, v)| (c.to_string(), json!(v)))
             .collect();
         file["fit"]["subtract"] = Value::Object(given);
+    }
+    // Recorded as the force's lag, whichever channel was named.
+    match args.read.lag.map(force_lag) {
+        Some(samples) if samples != 0 => file["fit"]["lag"] = json!({ "force": samples }),
+        _ => {}
     }
     if let Some(out) = &args.out {
         std::fs::write(out, serde_json::to_string_pretty(&file)? + "\n")

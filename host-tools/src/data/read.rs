@@ -79,6 +79,9 @@ pub struct ReadOptions {
     /// Channels whose sign is flipped once read, before any constant is
     /// subtracted ([`Record::negate`]).
     pub negate: Vec<Channel>,
+    /// A channel read this many samples late against the other, realigned
+    /// once read ([`Record::realign`]).
+    pub lag: Option<(Channel, i64)>,
 }
 
 impl ReadOptions {
@@ -121,6 +124,12 @@ impl ReadOptions {
     /// Flips the sign of `channel` once it is read.
     pub fn negate(mut self, channel: Channel) -> Self {
         self.negate.push(channel);
+        self
+    }
+
+    /// Realigns `channel`, read `samples` samples late against the other.
+    pub fn lag(mut self, channel: Channel, samples: i64) -> Self {
+        self.lag = Some((channel, samples));
         self
     }
 
@@ -262,6 +271,9 @@ pub fn read_str(
             ));
         }
         record.subtract(channel, value)?;
+    }
+    if let Some((channel, samples)) = options.lag {
+        record.realign(channel, samples)?;
     }
     Ok(record)
 }

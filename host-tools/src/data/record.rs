@@ -171,6 +171,16 @@ pub enum Notice {
         /// The column.
         column: String,
     },
+    /// A channel read out of step with the other was realigned (read
+    /// options): the samples that lost their partner were dropped.
+    Realigned {
+        /// The column that read late.
+        late: String,
+        /// The other column.
+        other: String,
+        /// How many samples late.
+        samples: usize,
+    },
     /// The time base was built from a sample rate: sample `k` is at `k / rate`.
     TimeFromSampleRate {
         /// The rate in Hz.
@@ -245,6 +255,20 @@ impl fmt::Display for Notice {
                 f,
                 "column '{column}': the sign of every sample flipped (read options)"
             ),
+            Notice::Realigned {
+                late,
+                other,
+                samples,
+            } => {
+                let s = if *samples == 1 { "" } else { "s" };
+                write!(
+                    f,
+                    "column '{late}' read {samples} sample{s} late: each of its samples paired \
+                     with the one of '{other}' {samples} before, and the time of that one; its \
+                     first {samples} sample{s} and the last {samples} of '{other}' dropped (read \
+                     options)"
+                )
+            }
             Notice::TimeFromSampleRate { hz, replaced } => {
                 write!(f, "time built from the sample rate {hz} Hz (t = k / {hz})")?;
                 if let Some(c) = replaced {
@@ -566,6 +590,74 @@ impl Record {
         series.values.iter_mut().for_each(|v| *v = -*v);
         let column = series.name.clone();
         self.notices.push(Notice::Negated { column });
+        Ok(())
+    }
+
+    /// Realigns a channel that reads `samples` samples late against the other
+    /// (early where negative): each of its samples is paired with the other
+    /// channel's sample (and time) that many before, and the samples left
+    /// without a partner at the two ends are dropped. Two acquisition systems
+    /// out of step, as `hyst diagnose` names them. Said in a notice (nothing
+    /// for 0); an error if the record lacks either channel or would keep
+    /// fewer than two samples.
+    ///
+    /// ```
+    /// use hyst::data::{Channel, Quantity, Record, Series};
+    /// let u = Series::canonical("u", Quantity::Length, vec![0.0, 1.0, 2.0, 3.0]);
+    /// let f = Series::canonical("f", Quantity::Force, vec![9.0, 10.0, 20.0, 30.0]);
+    /// let mut r = Record::new("late", Channel::Displacement, Some(u), Some(f), None).unwrap();
+    /// r.realign(Channel::Force, 1).unwrap();
+    /// assert_eq!(r.input(), &[0.0, 1.0, 2.0]);
+    /// assert_eq!(r.force().unwrap(), &[10.0, 20.0, 30.0]);
+    /// assert!(r.realign(Channel::Displacement, 2).is_err());
+    /// ```
+    pub fn realign(&mut self, channel: Channel, samples: i64) -> Result<(), DataError> {
+        if samples == 0 {
+            return Ok(());
+        }
+        let other = match channel {
+            Channel::Displacement => Channel::Force,
+            Channel::Force => Channel::Displacement,
+        };
+        // Said of the channel that reads late.
+        let (late, early) = if samples > 0 {
+            (channel, other)
+        } else {
+            (other, channel)
+        };
+        let k = samples.unsigned_abs();
+        let n = self.len();
+        let kept = usize::try_from(k)
+            .ok()
+            .and_then(|k| n.checked_sub(k))
+            .filter(|kept| *kept >= 2);
+        let late_name = self.series_to_change(late, "realign")?.name.clone();
+        let early_name = self.series_to_change(early, "realign")?.name.clone();
+        let Some(kept) = kept else {
+            return Err(DataError::file(
+                &self.source,
+                format!(
+                    "a lag of {samples} sample{} between '{late_name}' and '{early_name}' leaves \
+                     fewer than 2 of the record's {n} samples: expected a lag of at most {}",
+                    if k == 1 { "" } else { "s" },
+                    n.saturating_sub(2)
+                ),
+            ));
+        };
+        let drop = n - kept;
+        self.series_to_change(late, "realign")?.values.drain(..drop);
+        self.series_to_change(early, "realign")?
+            .values
+            .truncate(kept);
+        if let Some(t) = &mut self.time {
+            t.values.truncate(kept);
+        }
+        self.check()?;
+        self.notices.push(Notice::Realigned {
+            late: late_name,
+            other: early_name,
+            samples: drop,
+        });
         Ok(())
     }
 

@@ -16,6 +16,8 @@
 //! * [`offset`]: instruments that do not read zero at zero (a force offset, a
 //!   record that starts away from zero displacement), which asymmetry and
 //!   pinching can stand in for.
+//! * [`lag`]: force and displacement read out of step, which stiffness
+//!   degradation and pinching can stand in for.
 //! * [`ladder`]: the loop, adding the strongest significant effect until none
 //!   is left.
 //! * [`synthetic`]: lab-like records with hidden effects for testing all of
@@ -23,6 +25,7 @@
 
 pub mod diagnosis;
 pub mod ladder;
+pub mod lag;
 pub mod offset;
 pub mod page;
 pub mod rate;

@@ -130,13 +130,14 @@ pub struct OffsetCheck {
     pub evidence: String,
 }
 
-/// The weighing both checks share: the residual of `d` (NRMSE `nrmse`)
-/// against the residual `after` removing `k` numbers.
-struct Gain {
-    share: f64,
-    nrmse_with: f64,
-    delta_bic: f64,
-    n_eff: f64,
+/// The weighing the checks share (the offsets here, the lag of
+/// [`lag`](super::lag)): the residual of `d` (NRMSE `nrmse`) against the
+/// residual `after` removing `k` numbers.
+pub(super) struct Gain {
+    pub(super) share: f64,
+    pub(super) nrmse_with: f64,
+    pub(super) delta_bic: f64,
+    pub(super) n_eff: f64,
 }
 
 impl Gain {
@@ -147,7 +148,7 @@ impl Gain {
     /// comparison, which the offset model may be (a start 5 mm off on s1:
     /// refitted from rest it is back at the clean NRMSE, whose residual is
     /// white, while every effect left it correlated: found by review).
-    fn of(
+    pub(super) fn of(
         d: &Diagnosis,
         nrmse: f64,
         before: &[f64],
@@ -171,12 +172,12 @@ impl Gain {
         })
     }
 
-    fn significant(&self) -> bool {
+    pub(super) fn significant(&self) -> bool {
         self.delta_bic < SIGNIFICANT_BIC && self.share >= MIN_SHARE
     }
 
     /// Why a gain is not named.
-    fn not_significant(&self) -> String {
+    pub(super) fn not_significant(&self) -> String {
         if self.delta_bic < SIGNIFICANT_BIC {
             format!(
                 "Not significant: it removes less than {:.0}% of the squared error.",
@@ -189,7 +190,7 @@ impl Gain {
         }
     }
 
-    fn words(&self, nrmse: f64) -> String {
+    pub(super) fn words(&self, nrmse: f64) -> String {
         format!(
             "the NRMSE from {nrmse:.4} to {:.4} ({:.1}% of the squared error; delta-BIC {:+.0})",
             self.nrmse_with,
@@ -201,9 +202,9 @@ impl Gain {
 
 /// The effective sample size the suspects were weighed at (they share one),
 /// `None` where none were weighed.
-type Scale = Option<f64>;
+pub(super) type Scale = Option<f64>;
 
-fn scale_of(suspects: &[Suspect]) -> Scale {
+pub(super) fn scale_of(suspects: &[Suspect]) -> Scale {
     suspects.first().map(|s| s.n_eff)
 }
 
@@ -483,6 +484,22 @@ pub fn drift(
     })
 }
 
+/// The residual (model less measured) of `problem` refitted by least squares
+/// from `x0`, the parameters of a fit to the record before it was changed;
+/// `None` where the refit fails.
+pub(super) fn refit_residual(problem: &Problem, x0: &[f64]) -> Option<Vec<f64>> {
+    let refit = run::fit(problem, Method::Lsq, x0, &Quiet).ok()?;
+    let predicted = problem.predict(&refit.x)?;
+    Some(
+        predicted
+            .output
+            .iter()
+            .zip(&problem.exp.output)
+            .map(|(m, f)| m - f)
+            .collect(),
+    )
+}
+
 /// First displacements below this fraction of the peak are not checked: a
 /// jump that small cannot matter, and a record taken off by `--subtract`
 /// keeps a rounding residue (found by review: 4.5e-5 mm refitted in full).
@@ -517,14 +534,7 @@ pub fn start(
     // fit's compromise, so the same parameters alone recover little of it
     // (a 10 mm offset on the shared record s1: 25% of the squared error at
     // delta-BIC -6 with the same parameters).
-    let refit = run::fit(&shifted, Method::Lsq, &outcome.x, &Quiet).ok()?;
-    let predicted = shifted.predict(&refit.x)?;
-    let after: Vec<f64> = predicted
-        .output
-        .iter()
-        .zip(&problem.exp.output)
-        .map(|(m, f)| m - f)
-        .collect();
+    let after = refit_residual(&shifted, &outcome.x)?;
     let nrmse = outcome.scores.nrmse;
     let scale = scale_of(suspects);
     let alone = Gain::of(d, nrmse, &d.residual, &after, 1, scale)?;
