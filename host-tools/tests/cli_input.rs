@@ -1500,6 +1500,40 @@ fn lag_realigns_a_channel_read_out_of_step_and_says_so() {
         "{note}"
     );
     assert!(!diagnose(&["--lag", "force=1"]).contains("--lag"));
+    // A fit file edited by hand: a lag of 1.0 is whole; two channels are not one lag.
+    let edited = |lag: &str| {
+        let text = std::fs::read_to_string(out).unwrap().replace(
+            "\"lag\": {\n      \"force\": 1\n    }",
+            &format!("\"lag\": {lag}"),
+        );
+        assert!(text.contains(lag), "{text}");
+        write("edited-fit.json", &text)
+    };
+    let file = edited("{\"force\": 1.0}");
+    let note = cli::stderr(&ok(hyst(&[
+        "diagnose",
+        &late_path,
+        "--params",
+        &file,
+        "--candidates",
+        "asymmetry",
+        "--lag",
+        "force=1",
+    ])));
+    assert!(!note.contains("--lag"), "{note}");
+    let file = edited("{\"force\": 2, \"displacement\": 1}");
+    let note = cli::stderr(&ok(hyst(&[
+        "diagnose",
+        &late_path,
+        "--params",
+        &file,
+        "--candidates",
+        "asymmetry",
+    ])));
+    assert!(
+        note.contains("is {\"displacement\":1,\"force\":2}, not an object of one channel's lag"),
+        "{note}"
+    );
 
     let samples = rows.len() - 1;
     let e = err(hyst(&[
@@ -1519,14 +1553,19 @@ fn lag_realigns_a_channel_read_out_of_step_and_says_so() {
     );
     let history = write("no-force.csv", "displacement (mm)\n0.5\n1.0\n1.5\n");
     let params = write("bw.json", BW);
-    let e = err(hyst(&[
-        "simulate", &history, "--params", &params, "--lag", "force=1",
-    ]));
-    assert!(
-        e.contains("no-force.csv")
-            && e.contains("cannot realign the force: the record has no force"),
-        "{e}"
-    );
+    for (lag, said) in [
+        ("force=1", "the force against the displacement"),
+        ("displacement=1", "the displacement against the force"),
+    ] {
+        let e = err(hyst(&[
+            "simulate", &history, "--params", &params, "--lag", lag,
+        ]));
+        assert!(
+            e.contains("no-force.csv")
+                && e.contains(&format!("cannot realign {said}: the record has no force")),
+            "{e}"
+        );
+    }
     for bad in ["force=1.5", "rotation=1", "force", "force=x"] {
         let e = err(hyst(&["fit", &late_path, "--lag", bad]));
         assert!(e.contains(bad), "{bad}: {e}");

@@ -208,9 +208,13 @@ impl ReadArgs {
             None => {}
         }
         match fit.get("lag") {
-            Some(Value::Object(given)) => {
+            Some(Value::Object(given)) if given.len() == 1 => {
                 for (name, value) in given {
-                    let Some(value) = value.as_i64() else {
+                    // `1.0` is whole too.
+                    let whole = value
+                        .as_f64()
+                        .filter(|v| v.fract() == 0.0 && v.abs() < 9e15);
+                    let Some(value) = value.as_i64().or(whole.map(|v| v as i64)) else {
                         notes.push(format!(
                             "{}: `fit.lag.{name}` is {value}, not a whole number: not compared \
                              with this command's --lag",

@@ -631,6 +631,28 @@ impl Record {
             .ok()
             .and_then(|k| n.checked_sub(k))
             .filter(|kept| *kept >= 2);
+        // Said of the channel asked for, against the other (`--lag
+        // displacement=1` on a record without a force was "cannot realign the
+        // force": found by review).
+        let torsion = self.is_torsion();
+        let said = |c: Channel| match (torsion, c) {
+            (true, Channel::Displacement) => "twist",
+            (true, Channel::Force) => "torque",
+            (false, c) => c.name(),
+        };
+        for c in [channel, other] {
+            if self.series(c).is_none() {
+                return Err(DataError::file(
+                    &self.source,
+                    format!(
+                        "cannot realign the {} against the {}: the record has no {}",
+                        said(channel),
+                        said(other),
+                        said(c)
+                    ),
+                ));
+            }
+        }
         let late_name = self.series_to_change(late, "realign")?.name.clone();
         let early_name = self.series_to_change(early, "realign")?.name.clone();
         let Some(kept) = kept else {
