@@ -1474,13 +1474,13 @@ fn lag_realigns_a_channel_read_out_of_step_and_says_so() {
     let file: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(out).unwrap()).unwrap();
     assert_eq!(file["fit"]["lag"]["force"], 1, "{file}");
-    let diagnose = |extra: &[&str]| {
+    let diagnose_with = |params: &str, extra: &[&str]| {
         let args = [
             &[
                 "diagnose",
                 &late_path,
                 "--params",
-                out,
+                params,
                 "--candidates",
                 "asymmetry",
             ],
@@ -1489,6 +1489,7 @@ fn lag_realigns_a_channel_read_out_of_step_and_says_so() {
         .concat();
         cli::stderr(&ok(hyst(&args)))
     };
+    let diagnose = |extra: &[&str]| diagnose_with(out, extra);
     let note = diagnose(&[]);
     assert!(
         note.contains("read with `--lag force=1`, which is not given here"),
@@ -1510,26 +1511,10 @@ fn lag_realigns_a_channel_read_out_of_step_and_says_so() {
         write("edited-fit.json", &text)
     };
     let file = edited("{\"force\": 1.0}");
-    let note = cli::stderr(&ok(hyst(&[
-        "diagnose",
-        &late_path,
-        "--params",
-        &file,
-        "--candidates",
-        "asymmetry",
-        "--lag",
-        "force=1",
-    ])));
+    let note = diagnose_with(&file, &["--lag", "force=1"]);
     assert!(!note.contains("--lag"), "{note}");
     let file = edited("{\"force\": 2, \"displacement\": 1}");
-    let note = cli::stderr(&ok(hyst(&[
-        "diagnose",
-        &late_path,
-        "--params",
-        &file,
-        "--candidates",
-        "asymmetry",
-    ])));
+    let note = diagnose_with(&file, &[]);
     assert!(
         note.contains("is {\"displacement\":1,\"force\":2}, not an object of one channel's lag"),
         "{note}"
