@@ -51,6 +51,13 @@ fn lsq_fit(path: &str, extra: &[&str]) -> (f64, String) {
     (v["nrmse"].as_f64().unwrap(), cli::stderr(&out))
 }
 
+/// `hyst fit PATH --method lsq EXTRA... --out OUT`: the fit file it writes.
+fn lsq_fit_file(path: &str, extra: &[&str], out: &str) -> serde_json::Value {
+    let args = [&["fit", path, "--method", "lsq"], extra, &["--out", out]].concat();
+    ok(hyst(&args));
+    serde_json::from_str(&std::fs::read_to_string(out).unwrap()).unwrap()
+}
+
 /// The first `lines` lines of the thesis' Bouc-Wen example (`benches/baselines/bw_synthetic.csv`:
 /// 500 kg, k = 6 kN/mm, F = t sin(2 pi t) kN at 500 Hz, its comment lines included) as `name`.
 fn thesis_example(name: &str, lines: usize) -> String {
@@ -1384,20 +1391,11 @@ fn subtract_takes_a_zero_offset_off_a_channel_and_says_so() {
     // The fit file says what was taken off, for a later `simulate` or `diagnose --params`.
     let out = tmp("offset-fit.json");
     let out = out.to_str().unwrap();
-    ok(hyst(&[
-        "fit",
+    let file = lsq_fit_file(
         &offset_path,
-        "--method",
-        "lsq",
-        "--subtract",
-        "force=0.7",
-        "--negate",
-        "displacement",
-        "--out",
+        &["--subtract", "force=0.7", "--negate", "displacement"],
         out,
-    ]));
-    let file: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(out).unwrap()).unwrap();
+    );
     assert_eq!(file["fit"]["subtract"]["force"], 0.7, "{file}");
     assert_eq!(file["fit"]["negate"][0], "displacement", "{file}");
     // The verbs that line the fit up with its record say which of those options they are
@@ -1461,18 +1459,7 @@ fn lag_realigns_a_channel_read_out_of_step_and_says_so() {
 
     let out = tmp("late-fit.json");
     let out = out.to_str().unwrap();
-    ok(hyst(&[
-        "fit",
-        &late_path,
-        "--method",
-        "lsq",
-        "--lag",
-        "displacement=-1",
-        "--out",
-        out,
-    ]));
-    let file: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(out).unwrap()).unwrap();
+    let file = lsq_fit_file(&late_path, &["--lag", "displacement=-1"], out);
     assert_eq!(file["fit"]["lag"]["force"], 1, "{file}");
     let diagnose_with = |params: &str, extra: &[&str]| {
         let args = [

@@ -43,6 +43,16 @@ fn lagged(mut exp: Experiment, lag: i64) -> Experiment {
     exp
 }
 
+/// Every `step`-th sample of `exp`, from the first, of both channels together.
+fn every(exp: Experiment, step: usize) -> Experiment {
+    let keep = |x: &[f64]| x.iter().step_by(step).copied().collect::<Vec<f64>>();
+    Experiment {
+        input: keep(&exp.input),
+        output: keep(&exp.output),
+        drive: exp.drive,
+    }
+}
+
 #[test]
 fn a_force_read_out_of_step_is_named_with_its_lag() {
     for (path, name) in PATHS {
@@ -80,13 +90,7 @@ fn a_coarse_record_whose_samples_miss_the_peaks_is_not_given_a_lag() {
     // The step-wise path has 60 samples a cycle with its peaks on odd samples (15 and 45 of
     // each cycle); every second sample from the first keeps 30 a cycle and misses each peak by
     // half a step.
-    let fine = record(&[], Path::StepWise, Noise::LOW, 4).unwrap();
-    let keep = |x: &[f64]| x.iter().step_by(2).copied().collect::<Vec<f64>>();
-    let coarse = Experiment {
-        input: keep(&fine.input),
-        output: keep(&fine.output),
-        drive: fine.drive,
-    };
+    let coarse = every(record(&[], Path::StepWise, Noise::LOW, 4).unwrap(), 2);
     let (nrmse, check) = diagnose(coarse);
     println!(
         "bw {nrmse:.4}: {:?} {}",
@@ -108,13 +112,7 @@ fn a_coarse_record_whose_samples_miss_the_peaks_is_not_given_a_lag() {
 #[test]
 fn a_force_read_late_on_a_coarse_record_is_named() {
     // Every third sample of the step-wise path: 20 a cycle, the peaks kept.
-    let fine = record(&[], Path::StepWise, Noise::LOW, 5).unwrap();
-    let keep = |x: &[f64]| x.iter().step_by(3).copied().collect::<Vec<f64>>();
-    let coarse = Experiment {
-        input: keep(&fine.input),
-        output: keep(&fine.output),
-        drive: fine.drive,
-    };
+    let coarse = every(record(&[], Path::StepWise, Noise::LOW, 5).unwrap(), 3);
     let (control, _) = diagnose(coarse.clone());
     let (nrmse, check) = diagnose(lagged(coarse, 1));
     println!(

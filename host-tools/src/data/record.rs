@@ -615,10 +615,7 @@ impl Record {
         if samples == 0 {
             return Ok(());
         }
-        let other = match channel {
-            Channel::Displacement => Channel::Force,
-            Channel::Force => Channel::Displacement,
-        };
+        let other = channel.other();
         // Said of the channel that reads late.
         let (late, early) = if samples > 0 {
             (channel, other)
@@ -634,12 +631,7 @@ impl Record {
         // Said of the channel asked for, against the other (`--lag
         // displacement=1` on a record without a force was "cannot realign the
         // force": found by review).
-        let torsion = self.is_torsion();
-        let said = |c: Channel| match (torsion, c) {
-            (true, Channel::Displacement) => "twist",
-            (true, Channel::Force) => "torque",
-            (false, c) => c.name(),
-        };
+        let said = |c: Channel| self.channel_word(c);
         for c in [channel, other] {
             if self.series(c).is_none() {
                 return Err(DataError::file(
@@ -683,6 +675,16 @@ impl Record {
         Ok(())
     }
 
+    /// The word for `channel` in a message: a torsion record's channels are
+    /// the twist and the torque.
+    fn channel_word(&self, channel: Channel) -> &'static str {
+        match (self.is_torsion(), channel) {
+            (true, Channel::Displacement) => "twist",
+            (true, Channel::Force) => "torque",
+            (false, c) => c.name(),
+        }
+    }
+
     /// The series of `channel`, to change in place, or an error saying the
     /// record has none: "cannot `{doing}` the {channel}".
     fn series_to_change(
@@ -690,16 +692,10 @@ impl Record {
         channel: Channel,
         doing: &str,
     ) -> Result<&mut Series, DataError> {
-        let torsion = self.is_torsion();
+        let name = self.channel_word(channel);
         let series = match channel {
             Channel::Displacement => self.displacement.as_mut(),
             Channel::Force => self.force.as_mut(),
-        };
-        // A torsion record's channels are twist and torque.
-        let name = match (torsion, channel) {
-            (true, Channel::Displacement) => "twist",
-            (true, Channel::Force) => "torque",
-            (false, c) => c.name(),
         };
         series.ok_or_else(|| {
             DataError::file(
