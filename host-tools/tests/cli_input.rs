@@ -31,7 +31,7 @@ fn column_record() -> String {
 }
 
 /// [`column_record`] with each force value rewritten by `force` (its text as written).
-fn column_record_with_force(force: impl Fn(f64) -> String) -> String {
+fn column_record_with_force(mut force: impl FnMut(f64) -> String) -> String {
     column_record()
         .lines()
         .enumerate()
@@ -1316,9 +1316,10 @@ fn range_messages_state_the_range_that_is_checked() {
     assert!(e.contains("psi0 must not be zero"), "{e}");
 }
 
-/// `--subtract` takes a known zero offset off a channel as the record is read, says so, and is
-/// refused where it cannot mean anything: a channel the record lacks, a channel given twice.
-/// A fit of a record with a force offset taken off is the fit of the record without it.
+/// `--subtract` takes a known zero offset off a channel as the record is read, says so, adds up
+/// two given for one channel, and is refused where it cannot mean anything: a channel the record
+/// lacks, a value that is not a number. A fit of a record with a force offset taken off is the
+/// fit of the record without it.
 #[test]
 fn subtract_takes_a_zero_offset_off_a_channel_and_says_so() {
     let history = write("shifted.csv", "displacement (mm)\n0.5\n1.0\n1.5\n0.5\n");
@@ -1330,14 +1331,16 @@ fn subtract_takes_a_zero_offset_off_a_channel_and_says_so() {
         }
         hyst(&args)
     };
+    // The displacement column `simulate` wrote.
+    let written = |out: &Output| -> Vec<f64> {
+        String::from_utf8_lossy(&out.stdout)
+            .lines()
+            .skip(1)
+            .map(|l| l.split(',').next().unwrap().parse().unwrap())
+            .collect()
+    };
     let out = ok(simulate(&["displacement=0.5"]));
-    let text = String::from_utf8(out.stdout.clone()).unwrap();
-    let u: Vec<f64> = text
-        .lines()
-        .skip(1)
-        .map(|l| l.split(',').next().unwrap().parse().unwrap())
-        .collect();
-    assert_eq!(u, [0.0, 0.5, 1.0, 0.0], "{text}");
+    assert_eq!(written(&out), [0.0, 0.5, 1.0, 0.0]);
     let note = cli::stderr(&out);
     assert!(
         note.contains("0.5 mm subtracted from every sample"),
@@ -1349,12 +1352,23 @@ fn subtract_takes_a_zero_offset_off_a_channel_and_says_so() {
         e.contains("shifted.csv") && e.contains("the record has no force"),
         "{e}"
     );
-    let e = err(simulate(&["displacement=0.5", "displacement=0.1"]));
-    assert!(
-        e.contains("one offset to subtract from the displacement"),
-        "{e}"
+    // Two for one channel are both taken off, each said.
+    let out = ok(simulate(&["displacement=0.5", "displacement=0.25"]));
+    assert_eq!(written(&out), [-0.25, 0.25, 0.75, -0.25]);
+    assert_eq!(
+        cli::stderr(&out)
+            .matches("subtracted from every sample")
+            .count(),
+        2
     );
-    for bad in ["rotation=1", "force", "force=inf", "force=x"] {
+    for bad in [
+        "rotation=1",
+        "force",
+        "force=inf",
+        "force=x",
+        "force=1..",
+        "force=1..x",
+    ] {
         let e = err(simulate(&[bad]));
         assert!(e.contains(bad), "{bad}: {e}");
     }
@@ -1425,6 +1439,78 @@ fn subtract_takes_a_zero_offset_off_a_channel_and_says_so() {
         let note = cli::stderr(&ok(hyst(&both)));
         assert!(!note.contains("is not given here"), "{verb}: {note}");
     }
+}
+
+/// A load cell whose zero drifts, as `hyst diagnose` names it: `--subtract force=FIRST..LAST`
+/// takes a line in the sample number off the force, says so, and the fit is that of the record
+/// without the drift; the fit file records the line, and a later command that takes the same
+/// line off in two parts (a constant, then what is left) is not told it differs.
+#[test]
+fn subtract_takes_a_drifting_zero_off_as_a_line() {
+    let n = column_record().lines().count() - 1;
+    let mut k = 0;
+    let drifted = column_record_with_force(|f| {
+        let drift = 0.2 + 0.7 * k as f64 / (n - 1) as f64;
+        k += 1;
+        format!("{:.5}", f + drift)
+    });
+    let clean_nrmse = lsq_fit(&write("undrifted.csv", &column_record()), &[]).0;
+    let path = write("drifted.csv", &drifted);
+    let as_read = lsq_fit(&path, &[]).0;
+    let (taken_off, note) = lsq_fit(&path, &["--subtract", "force=0.2..0.9"]);
+    assert!(
+        note.contains(
+            "column 'force_kN': a line from 0.2 kN at the first sample to 0.9 kN at the last \
+             subtracted from its samples"
+        ),
+        "{note}"
+    );
+    // The force column rounded to 5 decimals after adding the drift, as the constant offset
+    // of the test above; there 0.0013 clean and 0.0019 taken off.
+    assert!(as_read > 20.0 * clean_nrmse, "{as_read} {clean_nrmse}");
+    assert!(taken_off < 2.0 * clean_nrmse, "{taken_off} {clean_nrmse}");
+    let out = tmp("drift-fit.json");
+    let out = out.to_str().unwrap();
+    let file = lsq_fit_file(&path, &["--subtract", "force=0.2..0.9"], out);
+    assert_eq!(
+        file["fit"]["subtract"]["force"],
+        serde_json::json!([0.2, 0.9]),
+        "{file}"
+    );
+    // The fitted set on the record read three ways: the line, the line in two parts (the same
+    // record to rounding; a fit from one start can land elsewhere on this record's flat valley,
+    // so the set is held fixed), the constant part alone.
+    let diagnose = |subtract: &[&str]| {
+        let mut args = vec![
+            "diagnose",
+            &path,
+            "--params",
+            out,
+            "--candidates",
+            "asymmetry",
+            "--json",
+        ];
+        for s in subtract {
+            args.extend(["--subtract", s]);
+        }
+        let o = ok(hyst(&args));
+        let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+        (v["nrmse"].as_f64().unwrap(), cli::stderr(&o))
+    };
+    let (whole, note) = diagnose(&["force=0.2..0.9"]);
+    assert!(!note.contains("was made on a record read with"), "{note}");
+    let (in_two, note) = diagnose(&["force=0.2", "force=0..0.7"]);
+    assert!(!note.contains("was made on a record read with"), "{note}");
+    assert!((in_two - whole).abs() < 1e-9 * whole, "{in_two} {whole}");
+    let (part, note) = diagnose(&["force=0.2"]);
+    assert!(
+        note.contains(
+            "read with `--subtract force=0.2..0.9`; this command gives `--subtract force=0.2` \
+             instead"
+        ),
+        "{note}"
+    );
+    assert!(part > 20.0 * whole, "{part} {whole}");
 }
 
 /// `--lag` realigns a force read a sample late (as `hyst diagnose` names it) as the record is

@@ -8,6 +8,10 @@
 //! (1.5% of the peak force and of Zu), with a constant added to the measured
 //! force or to the measured displacement, or with asymmetry hidden.
 
+#[path = "support/cli.rs"]
+mod cli;
+
+use cli::{hyst, ok, write_record};
 use hyst::discover::offset::{self, OffsetCheck};
 use hyst::discover::synthetic::{record, Noise, Path};
 use hyst::discover::{discover, weigh, Diagnosis, WeighOptions};
@@ -305,4 +309,74 @@ fn a_drifting_force_zero_is_named_and_degradation_is_not_taken_for_one() {
         println!("{name}, asymmetry not weighed: {}", drift.evidence);
         assert!(!drift.significant, "{name}: {}", drift.evidence);
     }
+}
+
+/// The user's loop on a drifting load cell (3% of the peak force over the test): `discover`
+/// names the drift beside the asymmetry its ladder adds and gives the option that takes the
+/// line off; run again with that option as printed, the ladder stays at `bw`, nothing is named,
+/// and the error is the record's without the drift.
+#[test]
+fn the_option_a_named_drift_gives_takes_it_off() {
+    let clean = record(&[], Path::StepWise, Noise::HIGH, 1).unwrap();
+    let total = 0.03 * peak(&clean.output);
+    let n = clean.output.len();
+    let mut exp = clean.clone();
+    exp.output
+        .iter_mut()
+        .enumerate()
+        .for_each(|(k, f)| *f += total * k as f64 / (n - 1) as f64);
+    let discover = |path: &str, extra: &[&str]| -> serde_json::Value {
+        let args = [&["discover", path, "--model", "bw", "--json"], extra].concat();
+        serde_json::from_slice(&ok(hyst(&args)).stdout).unwrap()
+    };
+    let ladder = |v: &serde_json::Value| -> Vec<String> {
+        v["ladder"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|s| s["model"].as_str().unwrap().to_string())
+            .collect()
+    };
+    let control = discover(&write_record("undrifted.csv", &clean), &[]);
+    assert_eq!(ladder(&control), ["bw"], "{control}");
+    let path = write_record("drifted.csv", &exp);
+    let found = discover(&path, &[]);
+    let drift = &found["force_drift"];
+    assert_eq!(drift["significant"], true, "{drift}");
+    let evidence = drift["evidence"].as_str().unwrap();
+    let option = evidence
+        .split_once("`--subtract ")
+        .and_then(|(_, rest)| rest.split_once('`'))
+        .map(|(option, _)| option)
+        .unwrap_or_else(|| panic!("no option in: {evidence}"));
+    assert!(
+        option.starts_with("force=") && option.contains(".."),
+        "{option}"
+    );
+
+    let again = discover(&path, &["--subtract", option]);
+    println!(
+        "ladder {:?} -> {:?} with --subtract {option}; NRMSE {} -> {}, clean {}",
+        ladder(&found),
+        ladder(&again),
+        found["nrmse"],
+        again["nrmse"],
+        control["nrmse"]
+    );
+    assert_eq!(ladder(&again), ["bw"], "{again}");
+    for check in ["force_offset", "force_drift", "start_offset", "channel_lag"] {
+        assert_ne!(
+            again[check]["significant"], true,
+            "{check}: {}",
+            again[check]
+        );
+    }
+    let (after, clean) = (
+        again["nrmse"].as_f64().unwrap(),
+        control["nrmse"].as_f64().unwrap(),
+    );
+    assert!(
+        (after - clean).abs() < 0.02 * clean,
+        "{after} against {clean}"
+    );
 }

@@ -5,11 +5,11 @@
 //! read the same way by `fit`, `diagnose`, `discover`, `sensitivity` and
 //! `simulate`.
 
-use crate::data::{Channel, ColumnRef, ReadOptions, Role, Unit};
+use crate::data::{Baseline, Channel, ColumnRef, ReadOptions, Role, Unit};
 use crate::model::ParamFile;
 use anyhow::{anyhow, bail, Result};
 use clap::Args;
-use serde_json::Value;
+use serde_json::{json, Value};
 
 /// A column named on the command line, with an optional unit:
 /// `D`, `D:cm`, `2`, `2:mm`.
@@ -68,20 +68,37 @@ pub fn parse_channel(text: &str) -> Result<Channel> {
     }
 }
 
-/// Parses `CHANNEL=VALUE` for `--subtract`: `displacement=0.5`, `force=-0.7`.
-pub fn parse_subtract(text: &str) -> Result<(Channel, f64)> {
-    let (name, value) = text
-        .split_once('=')
-        .ok_or_else(|| anyhow!("`{text}`: expected displacement=VALUE or force=VALUE"))?;
+/// Parses `CHANNEL=VALUE` or `CHANNEL=FIRST..LAST` for `--subtract`:
+/// `displacement=0.5`, `force=-0.7`, `force=0.01..0.37` (a line in the sample
+/// number from the first sample to the last).
+pub fn parse_subtract(text: &str) -> Result<(Channel, Baseline)> {
+    let (name, value) = text.split_once('=').ok_or_else(|| {
+        anyhow!("`{text}`: expected CHANNEL=VALUE or CHANNEL=FIRST..LAST, e.g. force=0.7")
+    })?;
     let channel = parse_channel(name).map_err(|e| anyhow!("`{text}`: {e} before `=`"))?;
-    let value: f64 = value
-        .trim()
-        .parse()
-        .map_err(|_| anyhow!("`{text}`: `{value}` is not a number"))?;
-    if !value.is_finite() {
-        bail!("`{text}`: the value is not a finite number");
-    }
+    let value: Baseline = value.parse().map_err(|e| anyhow!("`{text}`: {e}"))?;
     Ok((channel, value))
+}
+
+/// A zero as a fit file records it: a constant as a number, a line as
+/// `[first, last]`.
+fn recorded(b: Baseline) -> Value {
+    if b.is_constant() {
+        json!(b.first)
+    } else {
+        json!([b.first, b.last])
+    }
+}
+
+/// The zero a fit file records ([`recorded`]), if it is one.
+fn recorded_baseline(value: &Value) -> Option<Baseline> {
+    match value {
+        Value::Array(ends) => match ends.as_slice() {
+            [first, last] => Some(Baseline::line(first.as_f64()?, last.as_f64()?)),
+            _ => None,
+        },
+        v => v.as_f64().map(Baseline::from),
+    }
 }
 
 /// Parses `CHANNEL=SAMPLES` for `--lag`: `force=1` (the force reads one
@@ -139,9 +156,12 @@ pub struct ReadArgs {
     /// Take a constant off every sample of a channel, in mm or kN (deg or
     /// kN m for a torsion record, whose channels may be called `twist` and
     /// `torque`): a known zero offset of an instrument, as `hyst diagnose`
-    /// names one, e.g. `--subtract force=0.73`. Once per channel.
+    /// names one, e.g. `--subtract force=0.73`; or a line in the sample
+    /// number from FIRST at the first sample to LAST at the last, a zero that
+    /// drifts, e.g. `--subtract force=0.01..0.37`. Given twice for a channel,
+    /// both are taken off (they add up).
     #[arg(long, value_name = "CHANNEL=VALUE", value_parser = parse_subtract)]
-    pub subtract: Vec<(Channel, f64)>,
+    pub subtract: Vec<(Channel, Baseline)>,
     /// Flip the sign of a channel (`displacement` or `force`), before any
     /// `--subtract`: a transducer mounted the other way round, as the fitting
     /// verbs suspect when a record gives out energy. Once per channel.
@@ -178,17 +198,18 @@ impl ReadArgs {
         match fit.get("subtract") {
             Some(Value::Object(given)) => {
                 for (name, value) in given {
-                    let Some(value) = value.as_f64() else {
+                    let Some(value) = recorded_baseline(value) else {
                         notes.push(format!(
-                            "{}: `fit.subtract.{name}` is {value}, not a number: not compared with \
-                             this command's --subtract",
+                            "{}: `fit.subtract.{name}` is {value}, not a number or a pair of \
+                             numbers: not compared with this command's --subtract",
                             file.path.display()
                         ));
                         continue;
                     };
-                    let here = self.subtract.iter().find(|(c, _)| c.name() == name);
+                    let here = self.subtracted().find(|(c, _)| c.name() == name);
                     match here {
-                        Some((_, v)) if *v == value => {}
+                        // Two offsets added up may differ from one in the last place.
+                        Some((_, v)) if v.agrees_with(value) => {}
                         // Another value is given: said as such, not as none (found
                         // by review).
                         Some((_, v)) => notes.push(format!(
@@ -259,6 +280,29 @@ impl ReadArgs {
             )
         }));
         notes
+    }
+
+    /// What `--subtract` takes off each channel named: what is given for it,
+    /// added up.
+    fn subtracted(&self) -> impl Iterator<Item = (Channel, Baseline)> + '_ {
+        [Channel::Displacement, Channel::Force]
+            .into_iter()
+            .filter_map(|channel| {
+                self.subtract
+                    .iter()
+                    .filter(|(c, _)| *c == channel)
+                    .map(|(_, v)| *v)
+                    .reduce(|a, b| a + b)
+                    .map(|v| (channel, v))
+            })
+    }
+
+    /// What a fit file records of `--subtract`: for each channel named, what
+    /// is taken off it, a constant as a number, a line as `[first, last]`.
+    pub fn recorded_subtract(&self) -> serde_json::Map<String, Value> {
+        self.subtracted()
+            .map(|(c, v)| (c.to_string(), recorded(v)))
+            .collect()
     }
 
     /// The read options these arguments ask for.

@@ -618,13 +618,7 @@ pub fn run(args: FitArgs) -> Result<()> {
         file["fit"]["negate"] = json!(names);
     }
     if !args.read.subtract.is_empty() {
-        let given: serde_json::Map<String, Value> = args
-            .read
-            .subtract
-            .iter()
-            .map(|(c, v)| (c.to_string(), json!(v)))
-            .collect();
-        file["fit"]["subtract"] = Value::Object(given);
+        file["fit"]["subtract"] = Value::Object(args.read.recorded_subtract());
     }
     // Recorded as the force's lag, whichever channel was named.
     match args.read.lag.map(force_lag) {

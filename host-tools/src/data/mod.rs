@@ -66,6 +66,7 @@
 //! reads back as displacement-driven unless read with
 //! `ReadOptions::input(Channel::Force)`.
 
+pub mod baseline;
 pub mod branches;
 pub mod columns;
 pub mod csv;
@@ -81,6 +82,7 @@ pub mod unique_keys;
 pub mod units;
 pub mod write;
 
+pub use baseline::Baseline;
 pub use branches::{Branch, Label, SegmentOptions, Segmentation};
 pub use columns::Role;
 pub use cycles::{Cycle, CycleError, Cycles, Direction, HalfCycle, Peak, Threshold};

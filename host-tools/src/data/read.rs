@@ -1,6 +1,7 @@
 //! Reading a record from a file: the options, and the choice between the CSV
 //! and JSON readers by file extension.
 
+use super::baseline::Baseline;
 use super::columns::Role;
 use super::error::DataError;
 use super::record::{Channel, Record};
@@ -73,9 +74,10 @@ pub struct ReadOptions {
     /// Skip this many leading data rows (e.g. a point count written as a data
     /// row); each skipped row is reported as a notice.
     pub skip_rows: usize,
-    /// Constants taken off a channel once it is read (a known zero offset of
-    /// an instrument; [`Record::subtract`]), each reported as a notice.
-    pub subtract: Vec<(Channel, f64)>,
+    /// Constants or lines taken off a channel once it is read (a known zero
+    /// offset or drift of an instrument; [`Record::subtract`]), in turn, each
+    /// reported as a notice; two for one channel add up.
+    pub subtract: Vec<(Channel, Baseline)>,
     /// Channels whose sign is flipped once read, before any constant is
     /// subtracted ([`Record::negate`]).
     pub negate: Vec<Channel>,
@@ -115,9 +117,10 @@ impl ReadOptions {
         self
     }
 
-    /// Takes `value` off every sample of `channel` once it is read.
-    pub fn subtract(mut self, channel: Channel, value: f64) -> Self {
-        self.subtract.push((channel, value));
+    /// Takes `value`, a constant or a line in the sample number, off every
+    /// sample of `channel` once it is read.
+    pub fn subtract(mut self, channel: Channel, value: impl Into<Baseline>) -> Self {
+        self.subtract.push((channel, value.into()));
         self
     }
 
@@ -263,13 +266,9 @@ pub fn read_str(
         }
         record.negate(channel)?;
     }
-    for (i, &(channel, value)) in options.subtract.iter().enumerate() {
-        if options.subtract[..i].iter().any(|(c, _)| *c == channel) {
-            return Err(DataError::file(
-                name.as_ref(),
-                format!("expected one offset to subtract from the {channel}, found two"),
-            ));
-        }
+    // Offsets given twice for a channel are both taken off (they add up): the
+    // checks of `hyst diagnose` name what is left once a first one is off.
+    for &(channel, value) in &options.subtract {
         record.subtract(channel, value)?;
     }
     if let Some((channel, samples)) = options.lag {

@@ -2,6 +2,7 @@
 //! an optional time base (s), which signal drives the test, and what the reader
 //! noticed on the way.
 
+use super::baseline::Baseline;
 use super::branches::{SegmentOptions, Segmentation};
 use super::cycles::{CycleError, Cycles, Threshold};
 use super::error::DataError;
@@ -49,6 +50,15 @@ impl Channel {
 
 /// How many times a channel's largest value an offset to subtract may be.
 const SWAMPING: f64 = 1e6;
+
+/// A constant or line in few characters, as `--subtract` reads it.
+fn short_baseline(b: Baseline) -> String {
+    if b.is_constant() {
+        short(b.first)
+    } else {
+        format!("{}..{}", short(b.first), short(b.last))
+    }
+}
 
 /// `v` in few characters: plain between 1e-4 and 1e6, else with an exponent
 /// (an offset of 1e15 printed sixteen digits: found by review).
@@ -157,12 +167,13 @@ pub enum Notice {
         /// The column.
         column: String,
     },
-    /// A constant was taken off every sample of a column (read options).
+    /// A constant, or a line in the sample number, was taken off every
+    /// sample of a column (read options).
     Subtracted {
         /// The column.
         column: String,
-        /// The constant, in `unit`.
-        value: f64,
+        /// The constant or line, in `unit`.
+        value: Baseline,
         /// The canonical unit the constant is in.
         unit: Unit,
     },
@@ -246,10 +257,21 @@ impl fmt::Display for Notice {
                 column,
                 value,
                 unit,
-            } => write!(
+            } if value.is_constant() => write!(
                 f,
                 "column '{column}': {} {unit} subtracted from every sample (read options)",
-                short(*value)
+                short(value.first)
+            ),
+            Notice::Subtracted {
+                column,
+                value,
+                unit,
+            } => write!(
+                f,
+                "column '{column}': a line from {} {unit} at the first sample to {} {unit} at \
+                 the last subtracted from its samples (read options)",
+                short(value.first),
+                short(value.last)
             ),
             Notice::Negated { column } => write!(
                 f,
@@ -512,20 +534,30 @@ impl Record {
 
     /// Takes `value` (in the channel's canonical unit: mm or kN, deg or kN m
     /// for a torsion record) off every sample of `channel`: a known zero
-    /// offset of an instrument. Said in a notice; an error if the record has
-    /// no such channel or `value` is not finite.
+    /// offset of an instrument, a constant, or a zero that drifts along a
+    /// straight line in the sample number ([`Baseline`]). Said in a notice; an
+    /// error if the record has no such channel, `value` is not finite or
+    /// swamps the channel's values.
     ///
     /// ```
-    /// use hyst::data::{Channel, Record};
+    /// use hyst::data::{Baseline, Channel, Record};
     /// let mut r = Record::from_history("ramp", vec![0.5, 1.0, 1.5], None).unwrap();
     /// r.subtract(Channel::Displacement, 0.5).unwrap();
     /// assert_eq!(r.input(), &[0.0, 0.5, 1.0]);
+    /// r.subtract(Channel::Displacement, Baseline::line(0.0, 0.5)).unwrap();
+    /// assert_eq!(r.input(), &[0.0, 0.25, 0.5]);
     /// assert!(r.subtract(Channel::Force, 1.0).is_err());
     /// ```
-    pub fn subtract(&mut self, channel: Channel, value: f64) -> Result<(), DataError> {
+    pub fn subtract(
+        &mut self,
+        channel: Channel,
+        value: impl Into<Baseline>,
+    ) -> Result<(), DataError> {
+        let value = value.into();
         let source = self.source.clone();
-        let series = self.series_to_change(channel, &format!("subtract {} from", short(value)))?;
-        if !value.is_finite() {
+        let series =
+            self.series_to_change(channel, &format!("subtract {} from", short_baseline(value)))?;
+        if !(value.first.is_finite() && value.last.is_finite()) {
             return Err(DataError::file(
                 &self.source,
                 format!("expected a finite offset to subtract from the {channel}, found {value}"),
@@ -535,14 +567,14 @@ impl Record {
         // one a million times larger leaves them a few digits (found by
         // review: 1e16 kN accepted, the fit then at NRMSE 1).
         let largest = series.values.iter().fold(0.0f64, |a, v| a.max(v.abs()));
-        if value.abs() > SWAMPING * largest {
+        if value.largest() > SWAMPING * largest {
             let unit = series.unit.quantity().canonical();
             return Err(DataError::file(
                 &source,
                 format!(
                     "an offset of {} {unit} to subtract from column '{}' is more than {} times its \
                      largest value ({} {unit}): expected an offset of the size of the record's values",
-                    short(value),
+                    short(value.largest()),
                     series.name,
                     short(SWAMPING),
                     short(largest)
@@ -550,18 +582,28 @@ impl Record {
             ));
         }
         let varied = series.values.iter().any(|v| *v != series.values[0]);
-        series.values.iter_mut().for_each(|v| *v -= value);
+        let n = series.values.len();
+        series
+            .values
+            .iter_mut()
+            .enumerate()
+            .for_each(|(k, v)| *v -= value.at(k, n));
         let unit = series.unit.quantity().canonical();
         let column = series.name.clone();
         // An offset so large that the samples round to one value would be
         // blamed on the record by the check below (found by review: 1e300).
         if varied && series.values.iter().all(|v| *v == series.values[0]) {
+            let cause = if value.is_constant() {
+                "the offset swamps the values"
+            } else {
+                "nothing is left to fit"
+            };
             return Err(DataError::file(
                 &self.source,
                 format!(
                     "subtracting {} {unit} from column '{column}' leaves every sample the same: \
-                     the offset swamps the values; expected an offset of the size of the record's",
-                    short(value)
+                     {cause}; expected an offset of the size of the record's",
+                    short_baseline(value)
                 ),
             ));
         }

@@ -111,6 +111,10 @@ pub struct OffsetCheck {
     /// the model had absorbed into its first jump), if any.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub with_force: Option<f64>,
+    /// For a drift: the force's zero the line puts at the first and at the
+    /// last sample (kN), which `--subtract force=FIRST..LAST` takes off.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub line: Option<[f64; 2]>,
     /// Share of the squared error that removing the offset removes.
     pub share: f64,
     /// NRMSE with the offset removed: the parameters as fitted for the force
@@ -363,6 +367,7 @@ pub fn force(
         value,
         relative,
         with_force: None,
+        line: None,
         share: gain.share,
         nrmse_with: gain.nrmse_with,
         delta_bic: gain.delta_bic,
@@ -426,31 +431,32 @@ pub fn drift(
     // Where the line puts the zero at the first and the last sample (a
     // constant offset beside the drift shows in the first: found by review).
     let zero = |s: f64| -(mr + slope * (s - ms));
+    let (first, last) = (zero(0.0), zero(1.0));
     let mut evidence = format!(
         "The measured force's zero moves by {value:+.4} kN ({:+.1}% of its peak) from the first \
          sample to the last, against the model's (a straight line in the sample number fitted to \
          the residual: {:+.4} kN at the first sample, {:+.4} kN at the last); taking the line off \
          takes {}, a BIC change of {:+.0} beyond a constant alone.",
         100.0 * relative,
-        zero(0.0),
-        zero(1.0),
+        first,
+        last,
         gain.words(nrmse),
         beyond_constant.delta_bic
     );
     evidence.push(' ');
+    let remedy = format!("run again with `--subtract force={first:.4}..{last:.4}` to take it off");
     evidence.push_str(&if significant {
         match asymmetry {
             Some(a) => format!(
                 "Asymmetry, refitted, reaches {a:.4}: no better than these two numbers, which are \
                  not parameters of the model. A load cell whose zero drifts (warming up, creep) \
                  looks like unequal strength in the two directions: check the instrument before \
-                 trusting an effect named for it."
+                 trusting an effect named for it, and {remedy}."
             ),
-            None => {
+            None => format!(
                 "No effect of the library drifts with time: check the load cell's zero (warming \
-                     up, creep) before trusting an effect named for it."
-                    .to_string()
-            }
+                 up, creep) before trusting an effect named for it, and {remedy}."
+            ),
         }
     } else if !gain.significant() {
         gain.not_significant()
@@ -475,6 +481,7 @@ pub fn drift(
         value,
         relative,
         with_force: None,
+        line: Some([first, last]),
         share: gain.share,
         nrmse_with: gain.nrmse_with,
         delta_bic: gain.delta_bic,
@@ -592,6 +599,7 @@ pub fn start(
         value: u0,
         relative,
         with_force: force,
+        line: None,
         share: gain.share,
         nrmse_with: gain.nrmse_with,
         delta_bic: gain.delta_bic,
