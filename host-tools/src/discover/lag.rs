@@ -236,14 +236,7 @@ fn weigh(
         ("early", "after", -lag)
     };
     let plural = |k: i64| if k == 1 { "sample" } else { "samples" };
-    let change = if gain.share < 0.0 {
-        format!(
-            "the NRMSE from {nrmse:.4} to {:.4}, worse (delta-BIC {:+.0})",
-            gain.nrmse_with, gain.delta_bic
-        )
-    } else {
-        gain.words(nrmse)
-    };
+    let change = gain.words(nrmse);
     let changes = match timing {
         Some(0) if lag > 0 => "The measured force's changes run in step with the model's, as a \
                                fit bent towards a late force can make them on a coarse record."

@@ -194,7 +194,15 @@ impl Gain {
         }
     }
 
+    /// The change in words; one that fits worse is said so, not as a
+    /// negative share (found by review: "-9175681130736232.0%").
     pub(super) fn words(&self, nrmse: f64) -> String {
+        if self.share < 0.0 {
+            return format!(
+                "the NRMSE from {nrmse:.4} to {:.4}, worse (delta-BIC {:+.0})",
+                self.nrmse_with, self.delta_bic
+            );
+        }
         format!(
             "the NRMSE from {nrmse:.4} to {:.4} ({:.1}% of the squared error; delta-BIC {:+.0})",
             self.nrmse_with,
