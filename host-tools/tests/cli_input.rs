@@ -1511,6 +1511,12 @@ fn subtract_takes_a_drifting_zero_off_as_a_line() {
         "{note}"
     );
     assert!(part > 20.0 * whole, "{part} {whole}");
+    // `simulate`, which draws a fit over its record, says so too (found by review).
+    let note = cli::stderr(&ok(hyst(&["simulate", &path, "--params", out])));
+    assert!(
+        note.contains("read with `--subtract force=0.2..0.9`, which is not given here"),
+        "{note}"
+    );
 }
 
 /// `--lag` realigns a force read a sample late (as `hyst diagnose` names it) as the record is

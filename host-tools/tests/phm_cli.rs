@@ -253,6 +253,27 @@ fn fit_recovers_the_model_that_made_the_record() {
     assert!(passivity["cycles"].as_u64().unwrap() > 50);
     assert_eq!(passivity["returning_energy"], 0);
 
+    // A fit file records what the record's reading took off, for the PHM too (it did not:
+    // found by review).
+    let shifted = tmp("fit_shifted.json");
+    ok(hyst(&[
+        "fit",
+        &data,
+        "--model",
+        "phm-torsion",
+        "--subtract",
+        "torque=0.5..-0.5",
+        "--out",
+        shifted.to_str().unwrap(),
+    ]));
+    let recorded: Value =
+        serde_json::from_str(&std::fs::read_to_string(&shifted).unwrap()).unwrap();
+    assert_eq!(
+        recorded["fit"]["subtract"]["force"],
+        serde_json::json!([0.5, -0.5]),
+        "{recorded}"
+    );
+
     // Round trip: the written file simulates the record to the same NRMSE.
     let refit = ok(hyst(&[
         "simulate",

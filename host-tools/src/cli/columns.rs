@@ -293,16 +293,33 @@ impl ReadArgs {
                     .filter(|(c, _)| *c == channel)
                     .map(|(_, v)| *v)
                     .reduce(|a, b| a + b)
+                    // Lines that cancel take nothing off (found by review: recorded as 0).
+                    .filter(|v| *v != Baseline::from(0.0))
                     .map(|v| (channel, v))
             })
     }
 
-    /// What a fit file records of `--subtract`: for each channel named, what
-    /// is taken off it, a constant as a number, a line as `[first, last]`.
-    pub fn recorded_subtract(&self) -> serde_json::Map<String, Value> {
-        self.subtracted()
+    /// Writes what was done to the record as it was read into a fit file's
+    /// `fit` object, so that a later `simulate` or `diagnose --params` of the
+    /// file can be given the same (found by review): `negate`, the channels
+    /// flipped; `subtract`, for each channel what is taken off it, a constant
+    /// as a number, a line as `[first, last]`; `lag`, the force's lag,
+    /// whichever channel was named.
+    pub fn record_into(&self, fit: &mut Value) {
+        if !self.negate.is_empty() {
+            let names: Vec<String> = self.negate.iter().map(|c| c.to_string()).collect();
+            fit["negate"] = json!(names);
+        }
+        let subtract: serde_json::Map<String, Value> = self
+            .subtracted()
             .map(|(c, v)| (c.to_string(), recorded(v)))
-            .collect()
+            .collect();
+        if !subtract.is_empty() {
+            fit["subtract"] = Value::Object(subtract);
+        }
+        if let Some(samples) = self.lag.map(force_lag).filter(|s| *s != 0) {
+            fit["lag"] = json!({ "force": samples });
+        }
     }
 
     /// The read options these arguments ask for.

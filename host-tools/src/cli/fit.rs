@@ -1,6 +1,6 @@
 //! `hyst fit DATA --model SPEC`: parameters of a model from a lab record.
 
-use super::columns::{force_lag, ReadArgs};
+use super::columns::ReadArgs;
 use super::{ForcingArgs, ModelArg};
 use crate::data;
 use crate::fit::experiment::{Between, Drive, Experiment, Prediction, SimError};
@@ -611,20 +611,7 @@ pub fn run(args: FitArgs) -> Result<()> {
     if let Some(start) = &start {
         file["fit"]["start"] = json!(start.path.display().to_string());
     }
-    // What was done to the record as it was read, so that a later `simulate` or `diagnose
-    // --params` of the same file can be given the same (found by review).
-    if !args.read.negate.is_empty() {
-        let names: Vec<String> = args.read.negate.iter().map(|c| c.to_string()).collect();
-        file["fit"]["negate"] = json!(names);
-    }
-    if !args.read.subtract.is_empty() {
-        file["fit"]["subtract"] = Value::Object(args.read.recorded_subtract());
-    }
-    // Recorded as the force's lag, whichever channel was named.
-    match args.read.lag.map(force_lag) {
-        Some(samples) if samples != 0 => file["fit"]["lag"] = json!({ "force": samples }),
-        _ => {}
-    }
+    args.read.record_into(&mut file["fit"]);
     if let Some(out) = &args.out {
         std::fs::write(out, serde_json::to_string_pretty(&file)? + "\n")
             .with_context(|| format!("{}: cannot write", out.display()))?;

@@ -237,7 +237,7 @@ pub fn fit(args: &FitArgs) -> Result<()> {
         .iter()
         .map(|(n, s)| (n.clone(), json!(s)))
         .collect();
-    let meta = json!({
+    let mut meta = json!({
         "data": args.data.display().to_string(),
         "method": "lsq",
         "start": start_text,
@@ -253,6 +253,7 @@ pub fn fit(args: &FitArgs) -> Result<()> {
         "displacement_noise": monotone,
         "passivity": passivity,
     });
+    args.read.record_into(&mut meta);
     if let Some(w) = &passivity.worst {
         eprintln!(
             "warning: the fitted model returns energy in {} of {} closed cycles searched within the record's twist range (worst: {:.4} {mu}*{tu} a cycle through {:?} after {:?}); its coefficients lie where the PHM's rules are not passive (docs/phm.md, \"Open points\")",

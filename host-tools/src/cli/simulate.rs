@@ -120,7 +120,11 @@ pub fn run(args: SimulateArgs) -> Result<()> {
         bail!("--json is for --model {PHM_MODEL}");
     }
     let spec = file.spec(spec)?;
-    for note in file.switched_off(spec) {
+    for note in file
+        .switched_off(spec)
+        .into_iter()
+        .chain(args.read.unrepeated(&file))
+    {
         eprintln!("note: {note}");
     }
     let mut opts = args.read.options();

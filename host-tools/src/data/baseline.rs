@@ -82,10 +82,12 @@ impl fmt::Display for Baseline {
     /// `VALUE` for a constant, `FIRST..LAST` for a line: what `--subtract`
     /// reads.
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        // `-0` prints as `0`.
+        let (first, last) = (self.first + 0.0, self.last + 0.0);
         if self.is_constant() {
-            write!(f, "{}", self.first)
+            write!(f, "{first}")
         } else {
-            write!(f, "{}..{}", self.first, self.last)
+            write!(f, "{first}..{last}")
         }
     }
 }
@@ -118,8 +120,22 @@ impl FromStr for Baseline {
                 Err(BaselineError(format!("`{part}` is not a finite number")))
             }
         };
+        if text.contains("...") {
+            return Err(BaselineError(format!(
+                "`{text}` has three dots: expected FIRST..LAST"
+            )));
+        }
+        let end = |part: &str, which: &str| {
+            if part.trim().is_empty() {
+                Err(BaselineError(format!(
+                    "the value at the {which} sample is missing: expected FIRST..LAST"
+                )))
+            } else {
+                number(part)
+            }
+        };
         match text.split_once("..") {
-            Some((first, last)) => Ok(Baseline::line(number(first)?, number(last)?)),
+            Some((first, last)) => Ok(Baseline::line(end(first, "first")?, end(last, "last")?)),
             None => number(text).map(Baseline::from),
         }
     }
@@ -141,6 +157,7 @@ mod tests {
         assert_eq!(b.largest(), 3.0);
         assert!(Baseline::from(2.0).is_constant());
         assert_eq!(Baseline::from(2.0).at(7, 10), 2.0);
+        assert_eq!(Baseline::from(-0.0).to_string(), "0");
         assert_eq!(b + Baseline::from(1.0), Baseline::line(0.0, 4.0));
         let sum = Baseline::from(0.2) + Baseline::line(0.0, 0.7);
         assert_ne!(sum, Baseline::line(0.2, 0.9));
@@ -153,7 +170,15 @@ mod tests {
         let e = "0.1..x".parse::<Baseline>().unwrap_err().to_string();
         assert!(e.contains("`x` is not a number"), "{e}");
         let e = "..1".parse::<Baseline>().unwrap_err().to_string();
-        assert!(e.contains("`` is not a number"), "{e}");
+        assert!(
+            e.contains("the value at the first sample is missing"),
+            "{e}"
+        );
+        let e = "1..".parse::<Baseline>().unwrap_err().to_string();
+        assert!(e.contains("the value at the last sample is missing"), "{e}");
+        // Not 1 to 0.2 (found by review).
+        let e = "1...2".parse::<Baseline>().unwrap_err().to_string();
+        assert!(e.contains("three dots"), "{e}");
         let e = "inf".parse::<Baseline>().unwrap_err().to_string();
         assert!(e.contains("not a finite number"), "{e}");
         assert!("1..2..3".parse::<Baseline>().is_err());

@@ -262,6 +262,18 @@ fn early_reading(r: &[f64], u: &[f64]) -> Option<(f64, usize)> {
     Some((mr - slope * mu, n))
 }
 
+/// Decimals that print a value to 1e-5 of `peak` (at least 4): an offset of
+/// a record whose forces are a few 1e-4 printed as `0.0000` at 4 decimals,
+/// and the option that gave back took nothing off (found by review).
+fn decimals(peak: f64) -> usize {
+    let d = (-(1e-5 * peak).log10()).ceil();
+    if d.is_finite() {
+        d.clamp(4.0, 15.0) as usize
+    } else {
+        4
+    }
+}
+
 /// The least-squares line of `y` against `x`: the means of `y` and `x` and
 /// the slope (not finite where `x` does not vary).
 fn line(x: &[f64], y: &[f64]) -> (f64, f64, f64) {
@@ -295,6 +307,7 @@ pub fn force(
     nrmse: f64,
     suspects: &[Suspect],
     start_named: bool,
+    drift_named: bool,
 ) -> Option<OffsetCheck> {
     let m = mean(&d.residual);
     let after: Vec<f64> = d.residual.iter().map(|r| r - m).collect();
@@ -314,11 +327,13 @@ pub fn force(
     // fits their lopsided loops as well as asymmetry does).
     let early = early_reading(&d.residual, &d.displacement);
     let at_start = early.is_some_and(|(e, _)| e * m > 0.0 && e.abs() >= START_SHARE * m.abs());
-    let significant = gain.significant() && at_least_as_good && at_start && !start_named;
+    let significant =
+        gain.significant() && at_least_as_good && at_start && !start_named && !drift_named;
+    let dp = decimals(peak(&d.force));
     let reading = match early {
         Some((e, n)) => format!(
             "At zero displacement over the first {n} samples (until the displacement reaches \
-             {:.0}% of its peak) it reads {:+.4} kN above.",
+             {:.0}% of its peak) it reads {:+.dp$} kN above.",
             100.0 * EARLY,
             -e
         ),
@@ -329,7 +344,7 @@ pub fn force(
         ),
     };
     let mut evidence = format!(
-        "The measured force reads {value:+.4} kN ({:+.1}% of its peak) above the model's on \
+        "The measured force reads {value:+.dp$} kN ({:+.1}% of its peak) above the model's on \
          average (the model's own lopsided misfit included); a constant force taken off it takes \
          {}. {reading}",
         100.0 * relative,
@@ -343,11 +358,11 @@ pub fn force(
                  not a parameter of the model. A load cell that does not read zero at zero force \
                  looks like unequal strength in the two directions: check the instrument's zero \
                  before trusting the asymmetry, and run again with `--subtract \
-                 force={value:.4}` to take it off."
+                 force={value:.dp$}` to take it off."
             ),
             _ => format!(
                 "No effect of the library adds a constant force: check the load cell's zero, and \
-                 run again with `--subtract force={value:.4}` to take it off."
+                 run again with `--subtract force={value:.dp$}` to take it off."
             ),
         }
     } else if !gain.significant() {
@@ -355,6 +370,11 @@ pub fn force(
     } else if start_named {
         "Not named on its own: the record starts away from rest (below), and the model's first \
          jump leaves a constant of its own; the start's refit weighs a constant force as well."
+            .into()
+    } else if drift_named && at_least_as_good && at_start {
+        "Not named on its own: the force drift (below) takes off a line that holds this \
+         constant; its option alone takes off both (giving both would take the constant off \
+         twice, since offsets for one channel add up)."
             .into()
     } else if let Some((a, _)) = asymmetry.filter(|_| !at_least_as_good) {
         format!("Not named: asymmetry, refitted, reaches {a:.4}, better than a constant does.")
@@ -440,11 +460,12 @@ pub fn drift(
     // constant offset beside the drift shows in the first: found by review).
     let zero = |s: f64| -(mr + slope * (s - ms));
     let (first, last) = (zero(0.0), zero(1.0));
+    let dp = decimals(peak(&d.force));
     let mut evidence = format!(
-        "The measured force's zero moves by {value:+.4} kN ({:+.1}% of its peak) from the first \
-         sample to the last, against the model's (a straight line in the sample number fitted to \
-         the residual: {:+.4} kN at the first sample, {:+.4} kN at the last); taking the line off \
-         takes {}, a BIC change of {:+.0} beyond a constant alone.",
+        "The measured force's zero moves by {value:+.dp$} kN ({:+.1}% of its peak) from the \
+         first sample to the last, against the model's (a straight line in the sample number \
+         fitted to the residual: {:+.dp$} kN at the first sample, {:+.dp$} kN at the last); \
+         taking the line off takes {}, a BIC change of {:+.0} beyond a constant alone.",
         100.0 * relative,
         first,
         last,
@@ -452,7 +473,11 @@ pub fn drift(
         beyond_constant.delta_bic
     );
     evidence.push(' ');
-    let remedy = format!("run again with `--subtract force={first:.4}..{last:.4}` to take it off");
+    let remedy = format!(
+        "run again with `--subtract force={first:.dp$}..{last:.dp$}` to take it off (a \
+         displacement transducer whose zero drifts leaves a like pattern where the loading is \
+         elastic: if the load cell is sound, look there)"
+    );
     evidence.push_str(&if significant {
         match asymmetry {
             Some(a) => format!(
@@ -469,7 +494,7 @@ pub fn drift(
     } else if !gain.significant() {
         gain.not_significant()
     } else if beyond_constant.delta_bic >= SIGNIFICANT_BIC {
-        "Not named: a constant explains it as well (the force offset, above).".into()
+        "Not named: a constant explains it as well (weighed as the force offset).".into()
     } else if start_named {
         "Not named: the record starts away from rest (below), whose refit it would meet.".into()
     } else if !asymmetry_known {
@@ -574,9 +599,10 @@ pub fn start(
         _ => (alone, None),
     };
     let f0 = problem.exp.output[0];
+    let (du, df) = (decimals(peak(&problem.exp.input)), decimals(peak(&d.force)));
     let taken = match force {
         Some(f) => format!(
-            " with a constant force of {f:+.4} kN ({:+.1}% of the peak) taken off as well",
+            " with a constant force of {f:+.df$} kN ({:+.1}% of the peak) taken off as well",
             100.0 * f / peak(&d.force)
         ),
         None => String::new(),
@@ -584,18 +610,18 @@ pub fn start(
     let verdict = if !significant {
         gain.not_significant()
     } else {
-        let also = force.map_or(String::new(), |f| format!(" --subtract force={f:.4}"));
+        let also = force.map_or(String::new(), |f| format!(" --subtract force={f:.df$}"));
         format!(
             "If the displacement transducer's zero is off, run again with `--subtract \
-             displacement={u0:.4}{also}` (effects named for this record may stand in for the \
+             displacement={u0:.du$}{also}` (effects named for this record may stand in for the \
              offset); if the specimen was loaded before the record starts, the model cannot know \
              its state and the first cycles will fit less well."
         )
     };
     let evidence = format!(
-        "The record starts at displacement {u0:+.4} mm ({:+.1}% of its peak) and force \
-         {f0:+.4} kN; the models start at rest at zero, so their first step is a jump of \
-         {u0:+.4} mm. Refitted from rest at the first sample{taken}, the model takes {}. \
+        "The record starts at displacement {u0:+.du$} mm ({:+.1}% of its peak) and force \
+         {f0:+.df$} kN; the models start at rest at zero, so their first step is a jump of \
+         {u0:+.du$} mm. Refitted from rest at the first sample{taken}, the model takes {}. \
          {verdict}",
         100.0 * relative,
         gain.words(nrmse)
@@ -643,9 +669,11 @@ pub fn of_fit(
     let start = start(problem, outcome, d, suspects);
     let named = start.as_ref().is_some_and(|s| s.significant);
     let nrmse = outcome.scores.nrmse;
+    let drift = drift(problem.par.spec, d, nrmse, suspects, named);
+    let drifts = drift.as_ref().is_some_and(|s| s.significant);
     Offsets {
-        force: force(&model, d, nrmse, suspects, named),
-        drift: drift(problem.par.spec, d, nrmse, suspects, named),
+        force: force(&model, d, nrmse, suspects, named, drifts),
+        drift,
         start,
     }
 }
@@ -681,9 +709,11 @@ pub fn of_ladder(discovery: &Discovery) -> Offsets {
         .min_by(|a, b| a.delta_bic.total_cmp(&b.delta_bic));
     let named = start.as_ref().is_some_and(|s| s.significant);
     let (model, nrmse) = (on.spec.to_string(), on.outcome.scores.nrmse);
+    let drift = drift(on.spec, &on.diagnosis, nrmse, &on.suspects, named);
+    let drifts = drift.as_ref().is_some_and(|s| s.significant);
     Offsets {
-        force: force(&model, &on.diagnosis, nrmse, &on.suspects, named),
-        drift: drift(on.spec, &on.diagnosis, nrmse, &on.suspects, named),
+        force: force(&model, &on.diagnosis, nrmse, &on.suspects, named, drifts),
+        drift,
         start,
     }
 }
