@@ -255,3 +255,61 @@ fn pinching_that_grows_beside_degradation_is_named_too() {
     }
     assert!(first / last.outcome.scores.nrmse >= 3.0, "{ladder}");
 }
+
+/// Weak pinching with a wide band (zeta0 0.2, psi0 0.75) at 2% force noise: its pattern near
+/// zero force is below pinching's gate (the band lowers the stiffness everywhere), and stiffness
+/// degradation, which has no gate, was named in its place on 12 of 18 such records (seeds 1-6,
+/// zeta0 0.15-0.25; found by review on the core's simulator, 4 of 18 there). Pinching alone
+/// fits them decisively better (a BIC 35-59 lower here), so neither is named now, and the
+/// evidence says which fits best. Seeds 2 and 4, two of those that named stiffness degradation.
+#[test]
+fn weak_pinching_is_not_named_as_stiffness_degradation() {
+    let values = [
+        ("zeta0", 0.2),
+        ("p", 0.002),
+        ("q", 0.1),
+        ("psi0", 0.75),
+        ("delta_psi", 0.0),
+        ("lambda", 0.5),
+    ];
+    let noise = Noise {
+        displacement: 0.0,
+        force: 0.02,
+    };
+    for seed in [2u64, 4] {
+        let exp = record_with(
+            &[EffectKind::Pinching],
+            &values,
+            Path::StepWise,
+            noise,
+            seed,
+        )
+        .unwrap();
+        let (problem, outcome) = fit_bw(exp);
+        let d = Diagnosis::new(&problem, &outcome).unwrap();
+        let suspects = weigh(&problem, &outcome, &d, &WeighOptions::default());
+        let named: Vec<&str> = suspects
+            .iter()
+            .filter(|s| s.significant)
+            .map(|s| s.effect.name())
+            .collect();
+        assert!(named.is_empty(), "seed {seed}: {named:?}");
+        let stiffness = suspects
+            .iter()
+            .find(|s| s.effect == EffectRef::Builtin(EffectKind::StiffnessDegradation))
+            .unwrap();
+        eprintln!("seed {seed}: {}", stiffness.evidence);
+        // It would have been named on its own evidence: in the best model the gate leaves,
+        // its removal costs more than 10.
+        assert!(
+            stiffness.delta_bic < -10.0,
+            "seed {seed}: {}",
+            stiffness.evidence
+        );
+        assert!(
+            stiffness.evidence.contains("But pinching alone, held back"),
+            "seed {seed}: {}",
+            stiffness.evidence
+        );
+    }
+}
