@@ -1511,6 +1511,24 @@ fn subtract_takes_a_drifting_zero_off_as_a_line() {
         "{note}"
     );
     assert!(part > 20.0 * whole, "{part} {whole}");
+    // An option the fit was made without is said too (found by review).
+    let plain = tmp("plain-fit.json");
+    let plain = plain.to_str().unwrap();
+    lsq_fit_file(&path, &[], plain);
+    let note = cli::stderr(&ok(hyst(&[
+        "diagnose",
+        &path,
+        "--params",
+        plain,
+        "--candidates",
+        "asymmetry",
+        "--subtract",
+        "force=0.2..0.9",
+    ])));
+    assert!(
+        note.contains("read without `--subtract force=0.2..0.9`, which this command gives"),
+        "{note}"
+    );
     // `simulate`, which draws a fit over its record, says so too (found by review).
     let note = cli::stderr(&ok(hyst(&["simulate", &path, "--params", out])));
     assert!(

@@ -279,6 +279,36 @@ impl ReadArgs {
                 file.path.display()
             )
         }));
+        // And the other way round: an option given here that the fit was made
+        // without (found by review: only the missing ones were said).
+        let recorded = |key: &str, name: &str| match fit.get(key) {
+            Some(Value::Object(m)) => m.contains_key(name),
+            Some(Value::Array(a)) => a.iter().any(|v| v.as_str() == Some(name)),
+            _ => false,
+        };
+        let mut extra: Vec<String> = self
+            .negate
+            .iter()
+            .filter(|c| !recorded("negate", &c.to_string()))
+            .map(|c| format!("--negate {c}"))
+            .collect();
+        extra.extend(
+            self.subtracted()
+                .filter(|(c, _)| !recorded("subtract", &c.to_string()))
+                .map(|(c, v)| format!("--subtract {c}={v}")),
+        );
+        if let Some((c, v)) = self.lag.filter(|l| force_lag(*l) != 0) {
+            if fit.get("lag").is_none() {
+                extra.push(format!("--lag {}={v}", c.name()));
+            }
+        }
+        notes.extend(extra.into_iter().map(|option| {
+            format!(
+                "the fit in {} was made on a record read without `{option}`, which this command \
+                 gives: the record is read with it, unlike the one the fit was fitted to",
+                file.path.display()
+            )
+        }));
         notes
     }
 
