@@ -281,7 +281,7 @@ impl ReadArgs {
         }));
         // And the other way round: an option given here that the fit was made
         // without (found by review: only the missing ones were said).
-        let recorded = |key: &str, name: &str| match fit.get(key) {
+        let in_file = |key: &str, name: &str| match fit.get(key) {
             Some(Value::Object(m)) => m.contains_key(name),
             Some(Value::Array(a)) => a.iter().any(|v| v.as_str() == Some(name)),
             _ => false,
@@ -289,12 +289,12 @@ impl ReadArgs {
         let mut extra: Vec<String> = self
             .negate
             .iter()
-            .filter(|c| !recorded("negate", &c.to_string()))
+            .filter(|c| !in_file("negate", &c.to_string()))
             .map(|c| format!("--negate {c}"))
             .collect();
         extra.extend(
             self.subtracted()
-                .filter(|(c, _)| !recorded("subtract", &c.to_string()))
+                .filter(|(c, _)| !in_file("subtract", &c.to_string()))
                 .map(|(c, v)| format!("--subtract {c}={v}")),
         );
         if let Some((c, v)) = self.lag.filter(|l| force_lag(*l) != 0) {

@@ -534,12 +534,11 @@ pub fn weigh(
     // degradation on an irregular path, which pinching mimics, left pinching
     // 13 ahead of a gain of 6,286 (1.002 times), and that is no evidence
     // against it.
-    let best_gain = best_bic - bic(base.cost, base.k, n_eff);
     let overshadowed = singles
         .iter()
         .filter(|s| s.fit.is_some() && gated(&s.effects[0]))
         .map(|s| (s.effects[0], bic(s.cost, s.k, n_eff) - best_bic))
-        .filter(|(_, d)| *d < SIGNIFICANT_BIC && d + best_gain <= OVERSHADOWING * best_gain)
+        .filter(|(_, d)| *d < SIGNIFICANT_BIC && d + joint <= OVERSHADOWING * joint)
         .min_by(|a, b| a.1.total_cmp(&b.1));
     let lead =
         if joint < SIGNIFICANT_BIC && best.effects.iter().all(|e| removal(e) >= SIGNIFICANT_BIC) {
