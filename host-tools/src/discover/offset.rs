@@ -300,7 +300,10 @@ fn peak(x: &[f64]) -> f64 {
 /// named (`start_named`) the model's first jump leaves a constant of its own
 /// (a start 5 mm off named a force offset of -28 kN on the shared record s1,
 /// which has none: found by review), so the offset is then weighed within the
-/// start's refit ([`OffsetCheck::with_force`]), not alone.
+/// start's refit ([`OffsetCheck::with_force`]), not alone. Where the force
+/// drift is named (`drift_named`, [`drift`]) its line holds the constant, so
+/// the offset is not named beside it: offsets for one channel add up, and a
+/// user giving both options took the constant off twice (found by review).
 pub fn force(
     model: &str,
     d: &Diagnosis,
