@@ -54,6 +54,15 @@ fn peak(x: &[f64]) -> f64 {
     x.iter().fold(0.0f64, |a, v| a.max(v.abs()))
 }
 
+/// The `--subtract` option an offset's evidence gives, as `CHANNEL=VALUE`.
+fn subtract_option(evidence: &str) -> &str {
+    evidence
+        .split_once("`--subtract ")
+        .and_then(|(_, rest)| rest.split_once('`'))
+        .map(|(option, _)| option)
+        .unwrap_or_else(|| panic!("no option in: {evidence}"))
+}
+
 /// `clean` with a line added to its force, from `first` at the first sample to `last` at the
 /// last (fractions of its peak force): a load cell whose zero drifts.
 fn drifted(clean: &Experiment, first: f64, last: f64) -> Experiment {
@@ -348,13 +357,8 @@ fn a_zero_drifting_back_is_named_once_and_small_forces_keep_their_digits() {
             total * scale
         );
         // The option as printed, read back: its first end within 1e-4 of the line's.
-        let option = drift
-            .evidence
-            .split_once("`--subtract force=")
-            .and_then(|(_, rest)| rest.split_once('`'))
-            .map(|(option, _)| option)
-            .unwrap();
-        let printed: hyst::data::Baseline = option.parse().unwrap();
+        let option = subtract_option(&drift.evidence);
+        let printed: hyst::data::Baseline = option.strip_prefix("force=").unwrap().parse().unwrap();
         assert!(
             (printed.first - first).abs() < 1e-4 * first.abs(),
             "{scale}: `{option}` for {first}..{last}"
@@ -389,11 +393,7 @@ fn the_option_a_named_drift_gives_takes_it_off() {
     let drift = &found["force_drift"];
     assert_eq!(drift["significant"], true, "{drift}");
     let evidence = drift["evidence"].as_str().unwrap();
-    let option = evidence
-        .split_once("`--subtract ")
-        .and_then(|(_, rest)| rest.split_once('`'))
-        .map(|(option, _)| option)
-        .unwrap_or_else(|| panic!("no option in: {evidence}"));
+    let option = subtract_option(evidence);
     assert!(
         option.starts_with("force=") && option.contains(".."),
         "{option}"
