@@ -215,6 +215,9 @@ pub struct Beyond {
     pub start_offset: Option<OffsetCheck>,
     /// A force whose zero drifts along the record ([`offset::drift`]).
     pub force_drift: Option<OffsetCheck>,
+    /// A displacement whose zero drifts along the record
+    /// ([`check`](crate::discover::displacement_drift::check)).
+    pub displacement_drift: Option<OffsetCheck>,
     /// The force and the displacement read out of step ([`lag::of_fit`],
     /// [`lag::of_ladder`]): displacement-driven records.
     pub lag: Option<LagCheck>,
@@ -251,6 +254,7 @@ impl Beyond {
             force_offset: None,
             start_offset: None,
             force_drift: None,
+            displacement_drift: None,
             lag: None,
             displacement_noise: monotone,
             gives_out_energy: displacement
@@ -270,6 +274,7 @@ impl Beyond {
         self.force_offset = offsets.force;
         self.start_offset = offsets.start;
         self.force_drift = offsets.drift;
+        self.displacement_drift = offsets.displacement_drift;
     }
 
     /// Takes the check for a lag between the channels ([`lag::of_fit`],
@@ -326,6 +331,10 @@ impl Beyond {
             .force_drift
             .as_ref()
             .map(|o| ("force drift", o.significant, o.evidence.as_str()));
+        let displaced = self
+            .displacement_drift
+            .as_ref()
+            .map(|o| ("displacement drift", o.significant, o.evidence.as_str()));
         let lag = self
             .lag
             .as_ref()
@@ -334,6 +343,7 @@ impl Beyond {
             .chain(slip)
             .chain(force)
             .chain(drift)
+            .chain(displaced)
             .chain(start)
             .chain(lag)
             .collect()
@@ -410,6 +420,7 @@ pub fn diagnosis_json(
         "force_offset": beyond.force_offset,
         "start_offset": beyond.start_offset,
         "force_drift": beyond.force_drift,
+        "displacement_drift": beyond.displacement_drift,
         "channel_lag": beyond.lag,
         "displacement_noise": beyond.displacement_noise,
         "gives_out_energy": beyond.gives_out_energy,

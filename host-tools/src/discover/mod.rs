@@ -16,6 +16,8 @@
 //! * [`offset`]: instruments that do not read zero at zero (a force offset, a
 //!   record that starts away from zero displacement), which asymmetry and
 //!   pinching can stand in for.
+//! * [`displacement_drift`]: a displacement zero that drifts along the test,
+//!   told apart from a drifting load cell.
 //! * [`lag`]: force and displacement read out of step, which stiffness
 //!   degradation and pinching can stand in for.
 //! * [`ladder`]: the loop, adding the strongest significant effect until none
@@ -24,6 +26,7 @@
 //!   it.
 
 pub mod diagnosis;
+pub mod displacement_drift;
 pub mod ladder;
 pub mod lag;
 pub mod offset;

@@ -46,8 +46,10 @@
 //!   zero that moves along the test. The check fits a straight line in the
 //!   sample number to the residual (two numbers) and names it where it is
 //!   significant, adds a BIC change below -10 to a constant alone, fits at
-//!   least as well as asymmetry refitted, and the start is not named
-//!   ([`drift`]).
+//!   least as well as asymmetry refitted, the start is not named, and a line
+//!   in the displacement does not fit decisively better ([`drift`]; a
+//!   drifting displacement zero leaves a like residual:
+//!   [`displacement_drift`]).
 //!
 //! The force checks do not refit the model with the offset removed, so their
 //! gains are lower bounds of what a refit finds; `--subtract` (see the
@@ -62,9 +64,10 @@
 //! most 3.7%.
 
 use super::diagnosis::Diagnosis;
+use super::displacement_drift;
 use super::ladder::{Discovery, Step};
 use super::signature::mean;
-use super::suspects::{effective_n, Suspect, SIGNIFICANT_BIC};
+use super::suspects::{effective_n, residual, Suspect, SIGNIFICANT_BIC};
 use crate::fit::experiment::Drive;
 use crate::fit::problem::Problem;
 use crate::fit::run::{self, Method, Outcome, Quiet};
@@ -88,6 +91,9 @@ pub enum Offset {
     Start,
     /// The force's zero drifts along the record.
     Drift,
+    /// The displacement's zero drifts along the record
+    /// ([`displacement_drift`]).
+    DisplacementDrift,
 }
 
 /// What the record says about one zero offset.
@@ -102,7 +108,8 @@ pub struct OffsetCheck {
     pub significant: bool,
     /// The offset: the constant the measured force reads above the model's
     /// (force units, kN), the first displacement (mm), or for a drift how
-    /// far the force's zero moves from the first sample to the last (kN).
+    /// far the channel's zero moves from the first sample to the last (kN
+    /// for the force, mm for the displacement).
     pub value: f64,
     /// The offset as a fraction of the record's peak force or displacement.
     pub relative: f64,
@@ -111,8 +118,9 @@ pub struct OffsetCheck {
     /// the model had absorbed into its first jump), if any.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub with_force: Option<f64>,
-    /// For a drift: the force's zero the line puts at the first and at the
-    /// last sample (kN), which `--subtract force=FIRST..LAST` takes off.
+    /// For a drift: the channel's zero the line puts at the first and at
+    /// the last sample (kN or mm), which `--subtract CHANNEL=FIRST..LAST`
+    /// takes off.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub line: Option<[f64; 2]>,
     /// Share of the squared error that removing the offset removes.
@@ -265,7 +273,7 @@ fn early_reading(r: &[f64], u: &[f64]) -> Option<(f64, usize)> {
 /// Decimals that print a value to 1e-5 of `peak` (at least 4): an offset of
 /// a record whose forces are a few 1e-4 printed as `0.0000` at 4 decimals,
 /// and the option that gave back took nothing off (found by review).
-fn decimals(peak: f64) -> usize {
+pub(super) fn decimals(peak: f64) -> usize {
     let d = (-(1e-5 * peak).log10()).ceil();
     if d.is_finite() {
         d.clamp(4.0, 15.0) as usize
@@ -283,6 +291,53 @@ fn line(x: &[f64], y: &[f64]) -> (f64, f64, f64) {
     (my, mx, sxy / sxx)
 }
 
+/// Whether asymmetry, which can stand in for a drift on a test of growing
+/// amplitude, was weighed among `suspects` or is in the model `spec`: a line
+/// is named only where something held it against asymmetry (with
+/// `--candidates` leaving it out, a hidden asymmetry was named a drift of 11%
+/// of the peak: found by review).
+pub(super) fn asymmetry_known(spec: ModelSpec, suspects: &[Suspect]) -> bool {
+    asymmetry_refit(suspects).is_some() || spec.contains(EffectRef::Builtin(EffectKind::Asymmetry))
+}
+
+/// A straight line in the sample number fitted to a residual by least
+/// squares: what a drifting zero leaves.
+pub(super) struct ResidualLine {
+    /// The sample number scaled to [0, 1]: `k / (n - 1)`.
+    pub(super) s: Vec<f64>,
+    mean: f64,
+    mean_s: f64,
+    slope: f64,
+    /// The residual with the line taken off.
+    pub(super) after: Vec<f64>,
+}
+
+impl ResidualLine {
+    /// The line of `r`, which has at least two samples.
+    pub(super) fn of(r: &[f64]) -> Self {
+        let n = r.len();
+        let s: Vec<f64> = (0..n).map(|k| k as f64 / (n - 1) as f64).collect();
+        let (mean, mean_s, slope) = line(&s, r);
+        let after = s
+            .iter()
+            .zip(r)
+            .map(|(s, r)| r - mean - slope * (s - mean_s))
+            .collect();
+        ResidualLine {
+            s,
+            mean,
+            mean_s,
+            slope,
+            after,
+        }
+    }
+
+    /// The line at `s` (a residual, model less measured).
+    pub(super) fn at(&self, s: f64) -> f64 {
+        self.mean + self.slope * (s - self.mean_s)
+    }
+}
+
 /// The asymmetry suspect, where the suspects weighed and fitted it.
 fn asymmetry_refit(suspects: &[Suspect]) -> Option<&Suspect> {
     suspects
@@ -290,7 +345,7 @@ fn asymmetry_refit(suspects: &[Suspect]) -> Option<&Suspect> {
         .find(|s| is_asymmetry(s) && s.nrmse_with.is_finite())
 }
 
-fn peak(x: &[f64]) -> f64 {
+pub(super) fn peak(x: &[f64]) -> f64 {
     x.iter().fold(0.0f64, |a, v| a.max(v.abs()))
 }
 
@@ -416,53 +471,49 @@ pub fn force(
 /// constant alone (a constant offset is [`force`]'s), fits at least as well
 /// as the model refitted with asymmetry (which otherwise stands in for it:
 /// a drift of 1% of the peak force over a test was added as asymmetry at a
-/// BIC change of -485, found by review), and the start is not named.
+/// BIC change of -485, found by review), the start is not named, and a
+/// line in the displacement does not fit decisively better (`displacement`,
+/// [`displacement_drift::check`]).
 pub fn drift(
     spec: ModelSpec,
     d: &Diagnosis,
     nrmse: f64,
     suspects: &[Suspect],
     start_named: bool,
+    displacement: Option<&OffsetCheck>,
 ) -> Option<OffsetCheck> {
     let model = spec.to_string();
-    let in_model = spec.contains(EffectRef::Builtin(EffectKind::Asymmetry));
     let r = &d.residual;
     let n = r.len();
     if n < 3 {
         return None;
     }
-    // Least squares of r against s = k / (n - 1), k the sample number.
-    let s: Vec<f64> = (0..n).map(|k| k as f64 / (n - 1) as f64).collect();
-    let (mr, ms, slope) = line(&s, r);
-    let after: Vec<f64> = s
-        .iter()
-        .zip(r)
-        .map(|(s, r)| r - mr - slope * (s - ms))
-        .collect();
-    let constant: Vec<f64> = r.iter().map(|r| r - mr).collect();
+    let fitted = ResidualLine::of(r);
+    let after = &fitted.after;
+    let constant: Vec<f64> = r.iter().map(|r| r - fitted.mean).collect();
     let scale = scale_of(suspects);
-    let gain = Gain::of(d, nrmse, r, &after, 2, scale)?;
-    let beyond_constant = Gain::of(d, nrmse, &constant, &after, 1, scale)?;
+    let gain = Gain::of(d, nrmse, r, after, 2, scale)?;
+    let beyond_constant = Gain::of(d, nrmse, &constant, after, 1, scale)?;
     // The measured force is the model's less the residual: its zero moves by
     // -slope over the record.
-    let value = -slope;
+    let value = -fitted.slope;
     let relative = value / peak(&d.force);
     let asymmetry = asymmetry_refit(suspects).map(|s| s.nrmse_with);
     // Real asymmetry leaves a residual a line can follow on paths of growing
     // amplitude: without asymmetry weighed, or in the model, there is nothing
-    // to hold the line against (with `--candidates` leaving it out, a hidden
-    // asymmetry was named a drift of 11% of the peak: found by review).
-    let asymmetry_known = asymmetry.is_some() || in_model;
+    // to hold the line against.
+    let asymmetry_known = asymmetry_known(spec, suspects);
     let at_least_as_good = asymmetry.is_none_or(|a| gain.nrmse_with <= a);
+    let displaced = displacement.filter(|c| c.significant);
     let significant = gain.significant()
         && beyond_constant.delta_bic < SIGNIFICANT_BIC
         && asymmetry_known
         && at_least_as_good
-        && !start_named;
+        && !start_named
+        && displaced.is_none();
     // Where the line puts the zero at the first and the last sample (a
     // constant offset beside the drift shows in the first: found by review).
-    let zero = |s: f64| -(mr + slope * (s - ms));
-    let (first, last) = (zero(0.0), zero(1.0));
+    let (first, last) = (-fitted.at(0.0), -fitted.at(1.0));
     let dp = decimals(peak(&d.force));
     let mut evidence = format!(
         "The measured force's zero moves by {value:+.dp$} kN ({:+.1}% of its peak) from the \
@@ -477,9 +528,12 @@ pub fn drift(
     );
     evidence.push(' ');
     let remedy = format!(
-        "run again with `--subtract force={first:.dp$}..{last:.dp$}` to take it off (a \
-         displacement transducer whose zero drifts leaves a like pattern where the loading is \
-         elastic: if the load cell is sound, look there)"
+        "run again with `--subtract force={first:.dp$}..{last:.dp$}` to take it off{}",
+        if displacement.is_some() {
+            " (a line in the displacement, weighed below, fits no decisively better)"
+        } else {
+            ""
+        }
     );
     evidence.push_str(&if significant {
         match asymmetry {
@@ -496,6 +550,12 @@ pub fn drift(
         }
     } else if !gain.significant() {
         gain.not_significant()
+    } else if let Some(c) = displaced {
+        format!(
+            "Not named: a line in the displacement (below) fits decisively better, {:.4}; the \
+             displacement's zero drifts, not the load cell's.",
+            c.nrmse_with
+        )
     } else if beyond_constant.delta_bic >= SIGNIFICANT_BIC {
         "Not named: a constant explains it as well (weighed as the force offset).".into()
     } else if start_named {
@@ -532,15 +592,7 @@ pub fn drift(
 /// `None` where the refit fails.
 pub(super) fn refit_residual(problem: &Problem, x0: &[f64]) -> Option<Vec<f64>> {
     let refit = run::fit(problem, Method::Lsq, x0, &Quiet).ok()?;
-    let predicted = problem.predict(&refit.x)?;
-    Some(
-        predicted
-            .output
-            .iter()
-            .zip(&problem.exp.output)
-            .map(|(m, f)| m - f)
-            .collect(),
-    )
+    residual(problem, &refit.x)
 }
 
 /// First displacements below this fraction of the peak are not checked: a
@@ -615,10 +667,10 @@ pub fn start(
     } else {
         let also = force.map_or(String::new(), |f| format!(" --subtract force={f:.df$}"));
         format!(
-            "If the displacement transducer's zero is off, run again with `--subtract \
-             displacement={u0:.du$}{also}` (effects named for this record may stand in for the \
-             offset); if the specimen was loaded before the record starts, the model cannot know \
-             its state and the first cycles will fit less well."
+            "{START_REMEDY}, run again with `--subtract displacement={u0:.du$}{also}` (effects \
+             named for this record may stand in for the offset); if the specimen was loaded \
+             before the record starts, the model cannot know its state and the first cycles will \
+             fit less well."
         )
     };
     let evidence = format!(
@@ -646,6 +698,25 @@ pub fn start(
     })
 }
 
+/// How a named start's advice begins: [`yield_start`] replaces it.
+const START_REMEDY: &str = "If the displacement transducer's zero is off";
+
+/// Unnames the start away from rest `start` for the drifting displacement
+/// zero `drift`, which fits decisively better and whose first end holds the
+/// start (a drift of 0.5 mm over an irregular record starting 0.016 mm off,
+/// the noise: the start, refitted with a constant force, was named for it).
+pub(super) fn yield_start(start: &mut OffsetCheck, drift: &OffsetCheck) {
+    if let Some(at) = start.evidence.find(START_REMEDY) {
+        start.evidence.truncate(at);
+    }
+    start.evidence.push_str(&format!(
+        "Not named: a line in the displacement (above) fits decisively better (delta-BIC {:+.0} \
+         against {:+.0}), and its first end holds the start.",
+        drift.delta_bic, start.delta_bic
+    ));
+    start.significant = false;
+}
+
 /// The checks of one record: a force offset, a start away from rest, a
 /// drifting force zero.
 #[derive(Clone, Debug, Default)]
@@ -656,6 +727,8 @@ pub struct Offsets {
     pub start: Option<OffsetCheck>,
     /// [`drift`].
     pub drift: Option<OffsetCheck>,
+    /// [`displacement_drift::check`].
+    pub displacement_drift: Option<OffsetCheck>,
 }
 
 /// The checks on one diagnosed fit (`hyst diagnose`).
@@ -669,14 +742,25 @@ pub fn of_fit(
         return Offsets::default();
     }
     let model = problem.par.spec.to_string();
-    let start = start(problem, outcome, d, suspects);
-    let named = start.as_ref().is_some_and(|s| s.significant);
+    let mut start = start(problem, outcome, d, suspects);
+    let displaced = displacement_drift::check(problem, outcome, d, suspects, start.as_ref());
+    let named = settle_start(&mut start, displaced.as_ref());
     let nrmse = outcome.scores.nrmse;
-    let drift = drift(problem.par.spec, d, nrmse, suspects, named);
-    let drifts = drift.as_ref().is_some_and(|s| s.significant);
+    let drift = drift(
+        problem.par.spec,
+        d,
+        nrmse,
+        suspects,
+        named,
+        displaced.as_ref(),
+    );
+    let drifts = [&drift, &displaced]
+        .iter()
+        .any(|c| c.as_ref().is_some_and(|c| c.significant));
     Offsets {
         force: force(&model, d, nrmse, suspects, named, drifts),
         drift,
+        displacement_drift: displaced,
         start,
     }
 }
@@ -706,18 +790,48 @@ pub fn of_ladder(discovery: &Discovery) -> Offsets {
     if discovery.steps.len() > 1 {
         starts.push(start_on(last));
     }
-    let start = starts
+    let mut start = starts
         .into_iter()
         .flatten()
         .min_by(|a, b| a.delta_bic.total_cmp(&b.delta_bic));
-    let named = start.as_ref().is_some_and(|s| s.significant);
     let (model, nrmse) = (on.spec.to_string(), on.outcome.scores.nrmse);
-    let drift = drift(on.spec, &on.diagnosis, nrmse, &on.suspects, named);
-    let drifts = drift.as_ref().is_some_and(|s| s.significant);
+    let displaced = displacement_drift::check(
+        &on.problem,
+        &on.outcome,
+        &on.diagnosis,
+        &on.suspects,
+        start.as_ref(),
+    );
+    let named = settle_start(&mut start, displaced.as_ref());
+    let drift = drift(
+        on.spec,
+        &on.diagnosis,
+        nrmse,
+        &on.suspects,
+        named,
+        displaced.as_ref(),
+    );
+    let drifts = [&drift, &displaced]
+        .iter()
+        .any(|c| c.as_ref().is_some_and(|c| c.significant));
     Offsets {
         force: force(&model, &on.diagnosis, nrmse, &on.suspects, named, drifts),
         drift,
+        displacement_drift: displaced,
         start,
+    }
+}
+
+/// Whether the start away from rest stays named beside the drifting
+/// displacement zero `displaced`, which was weighed against it (a named drift
+/// fitted decisively better: the start yields).
+fn settle_start(start: &mut Option<OffsetCheck>, displaced: Option<&OffsetCheck>) -> bool {
+    match (start.as_mut(), displaced) {
+        (Some(s), Some(d)) if s.significant && d.significant => {
+            yield_start(s, d);
+            false
+        }
+        (s, _) => s.is_some_and(|s| s.significant),
     }
 }
 
