@@ -356,16 +356,18 @@ pub(super) fn peak(x: &[f64]) -> f64 {
 /// (a start 5 mm off named a force offset of -28 kN on the shared record s1,
 /// which has none: found by review), so the offset is then weighed within the
 /// start's refit ([`OffsetCheck::with_force`]), not alone. Where the force
-/// drift is named (`drift_named`, [`drift`]) its line holds the constant, so
-/// the offset is not named beside it: offsets for one channel add up, and a
-/// user giving both options took the constant off twice (found by review).
+/// drift is named (`drift_named` is [`Offset::Drift`], [`drift`]) its line
+/// holds the constant, so the offset is not named beside it: offsets for one
+/// channel add up, and a user giving both options took the constant off
+/// twice (found by review). Where the displacement's drift is named
+/// ([`Offset::DisplacementDrift`]) the constant is part of what it leaves.
 pub fn force(
     model: &str,
     d: &Diagnosis,
     nrmse: f64,
     suspects: &[Suspect],
     start_named: bool,
-    drift_named: bool,
+    drift_named: Option<Offset>,
 ) -> Option<OffsetCheck> {
     let m = mean(&d.residual);
     let after: Vec<f64> = d.residual.iter().map(|r| r - m).collect();
@@ -386,7 +388,7 @@ pub fn force(
     let early = early_reading(&d.residual, &d.displacement);
     let at_start = early.is_some_and(|(e, _)| e * m > 0.0 && e.abs() >= START_SHARE * m.abs());
     let significant =
-        gain.significant() && at_least_as_good && at_start && !start_named && !drift_named;
+        gain.significant() && at_least_as_good && at_start && !start_named && drift_named.is_none();
     let dp = decimals(peak(&d.force));
     let reading = match early {
         Some((e, n)) => format!(
@@ -429,7 +431,13 @@ pub fn force(
         "Not named on its own: the record starts away from rest (below), and the model's first \
          jump leaves a constant of its own; the start's refit weighs a constant force as well."
             .into()
-    } else if drift_named && at_least_as_good && at_start {
+    } else if let (Some(Offset::DisplacementDrift), true) =
+        (drift_named, at_least_as_good && at_start)
+    {
+        "Not named on its own: the displacement drift (below) leaves a constant force of its \
+         own (the elastic spring times the line); take its line off and look again."
+            .into()
+    } else if drift_named.is_some() && at_least_as_good && at_start {
         "Not named on its own: the force drift (below) takes off a line that holds this \
          constant; its option alone takes off both (giving both would take the constant off \
          twice, since offsets for one channel add up)."
@@ -754,9 +762,7 @@ pub fn of_fit(
         named,
         displaced.as_ref(),
     );
-    let drifts = [&drift, &displaced]
-        .iter()
-        .any(|c| c.as_ref().is_some_and(|c| c.significant));
+    let drifts = named_drift(&drift, &displaced);
     Offsets {
         force: force(&model, d, nrmse, suspects, named, drifts),
         drift,
@@ -811,15 +817,22 @@ pub fn of_ladder(discovery: &Discovery) -> Offsets {
         named,
         displaced.as_ref(),
     );
-    let drifts = [&drift, &displaced]
-        .iter()
-        .any(|c| c.as_ref().is_some_and(|c| c.significant));
+    let drifts = named_drift(&drift, &displaced);
     Offsets {
         force: force(&model, &on.diagnosis, nrmse, &on.suspects, named, drifts),
         drift,
         displacement_drift: displaced,
         start,
     }
+}
+
+/// Which drift is named, if any.
+fn named_drift(force: &Option<OffsetCheck>, displacement: &Option<OffsetCheck>) -> Option<Offset> {
+    [force, displacement]
+        .into_iter()
+        .flatten()
+        .find(|c| c.significant)
+        .map(|c| c.offset)
 }
 
 /// Whether the start away from rest stays named beside the drifting
