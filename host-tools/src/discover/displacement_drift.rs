@@ -37,7 +37,9 @@ use super::offset::{
     asymmetry_known, decimals, peak, refit_residual, scale_of, Gain, Offset, OffsetCheck,
     ResidualLine,
 };
+use super::signature::mean;
 use super::suspects::{residual, Suspect, SIGNIFICANT_BIC};
+use crate::data::Baseline;
 use crate::fit::experiment::Drive;
 use crate::fit::problem::Problem;
 use crate::fit::run::{self, Method, Outcome, Quiet};
@@ -56,23 +58,9 @@ const ROUNDS: usize = 2;
 /// displacement.
 const STEP: f64 = 1e-3;
 
-/// A line in the sample number: `first` at the first sample, `last` at the
-/// last (the scale of `--subtract CHANNEL=FIRST..LAST`).
-#[derive(Clone, Copy, Debug, PartialEq)]
-struct Line {
-    first: f64,
-    last: f64,
-}
-
-impl Line {
-    fn at(self, k: usize, n: usize) -> f64 {
-        let s = k as f64 / (n - 1) as f64;
-        self.first + (self.last - self.first) * s
-    }
-}
-
-/// `problem` with `line` taken off its displacement.
-fn without(problem: &Problem, line: Line) -> Problem {
+/// `problem` with `line` taken off its displacement, as `--subtract
+/// displacement=FIRST..LAST` takes it off the record.
+fn without(problem: &Problem, line: Baseline) -> Problem {
     let mut p = problem.clone();
     let n = p.exp.input.len();
     p.exp
@@ -87,30 +75,27 @@ fn without(problem: &Problem, line: Line) -> Problem {
 /// the residual of the model refitted to the record without it; from the
 /// fitted parameters `x0`. `None` where a simulation or a refit fails or the
 /// step is singular (a model with no stiffness to feel a displacement).
-fn estimate(problem: &Problem, x0: &[f64]) -> Option<(Line, Vec<f64>)> {
+fn estimate(problem: &Problem, x0: &[f64]) -> Option<(Baseline, Vec<f64>)> {
     let n = problem.exp.input.len();
     let h = STEP * peak(&problem.exp.input);
     if n < 3 || h.is_nan() || h <= 0.0 {
         return None;
     }
-    let mut line = Line {
-        first: 0.0,
-        last: 0.0,
-    };
+    let mut line = Baseline::line(0.0, 0.0);
     let mut x = x0.to_vec();
     let mut r = residual(problem, &x)?;
     for _ in 0..ROUNDS {
         // Columns of the residual's derivative with respect to the line's
         // two ends, by forward differences.
-        let column = |moved: Line| -> Option<Vec<f64>> {
+        let column = |moved: Baseline| -> Option<Vec<f64>> {
             let moved = residual(&without(problem, moved), &x)?;
             Some(moved.iter().zip(&r).map(|(m, r)| (m - r) / h).collect())
         };
-        let a = column(Line {
+        let a = column(Baseline {
             first: line.first + h,
             ..line
         })?;
-        let b = column(Line {
+        let b = column(Baseline {
             last: line.last + h,
             ..line
         })?;
@@ -169,7 +154,7 @@ pub fn check(
         .for_each(|(f, s)| *f += fitted.at(*s));
     let force_line = refit_residual(&forced, &outcome.x)?;
     let (found, after) = estimate(problem, &outcome.x)?;
-    let m = r.iter().sum::<f64>() / n as f64;
+    let m = mean(r);
     let constant: Vec<f64> = r.iter().map(|r| r - m).collect();
     let gain = Gain::of(d, nrmse, r, &after, 2, scale)?;
     let beyond_force = Gain::of(d, nrmse, &force_line, &after, 0, scale)?;
