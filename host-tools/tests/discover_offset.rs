@@ -417,8 +417,15 @@ fn a_zero_drifting_back_is_named_once_and_small_forces_keep_their_digits() {
 /// The user's loop on a drifting instrument: `discover` on `exp` (the record `clean` with a
 /// drift added) names the drift as `check`, whose evidence gives the option that takes the line
 /// off `channel`; run again with that option as printed, the ladder stays at `bw`, nothing is
-/// named, and the error is the record's without the drift.
-fn the_option_takes_it_off(clean: &Experiment, exp: &Experiment, check: &str, channel: &str) {
+/// named, and the error is the record's without the drift. The record is written as `file`,
+/// which tests running at once must not share.
+fn the_option_takes_it_off(
+    file: &str,
+    clean: &Experiment,
+    exp: &Experiment,
+    check: &str,
+    channel: &str,
+) {
     let discover = |path: &str, extra: &[&str]| -> serde_json::Value {
         let args = [&["discover", path, "--model", "bw", "--json"], extra].concat();
         serde_json::from_slice(&ok(hyst(&args)).stdout).unwrap()
@@ -431,9 +438,9 @@ fn the_option_takes_it_off(clean: &Experiment, exp: &Experiment, check: &str, ch
             .map(|s| s["model"].as_str().unwrap().to_string())
             .collect()
     };
-    let control = discover(&write_record(&format!("un{check}.csv"), clean), &[]);
+    let control = discover(&write_record(&format!("un{file}.csv"), clean), &[]);
     assert_eq!(ladder(&control), ["bw"], "{control}");
-    let path = write_record(&format!("{check}.csv"), exp);
+    let path = write_record(&format!("{file}.csv"), exp);
     let found = discover(&path, &[]);
     let drift = &found[check];
     assert_eq!(drift["significant"], true, "{drift}");
@@ -444,7 +451,12 @@ fn the_option_takes_it_off(clean: &Experiment, exp: &Experiment, check: &str, ch
         "{option}"
     );
 
-    let again = discover(&path, &["--subtract", option]);
+    // One option a channel, each after its own `--subtract`.
+    let options: Vec<&str> = option
+        .split(" --subtract ")
+        .flat_map(|o| ["--subtract", o])
+        .collect();
+    let again = discover(&path, &options);
     println!(
         "ladder {:?} -> {:?} with --subtract {option}; NRMSE {} -> {}, clean {}",
         ladder(&found),
@@ -483,7 +495,7 @@ fn the_option_takes_it_off(clean: &Experiment, exp: &Experiment, check: &str, ch
 fn the_option_a_named_drift_gives_takes_it_off() {
     let clean = record(&[], Path::StepWise, Noise::HIGH, 1).unwrap();
     let exp = drifted(&clean, 0.0, 0.03);
-    the_option_takes_it_off(&clean, &exp, "force_drift", "force");
+    the_option_takes_it_off("force_drift", &clean, &exp, "force_drift", "force");
 }
 
 /// The loop on a displacement transducer drifting 0.5 mm over the test: named (the ladder
@@ -492,7 +504,13 @@ fn the_option_a_named_drift_gives_takes_it_off() {
 fn the_option_a_named_displacement_drift_gives_takes_it_off() {
     let clean = record(&[], Path::StepWise, Noise::HIGH, 1).unwrap();
     let exp = displaced(&clean, 0.0, 0.5);
-    the_option_takes_it_off(&clean, &exp, "displacement_drift", "displacement");
+    the_option_takes_it_off(
+        "displacement_drift",
+        &clean,
+        &exp,
+        "displacement_drift",
+        "displacement",
+    );
 }
 
 /// `clean` with a line added to its displacement, from `first` at the first sample to `last` at
@@ -503,6 +521,15 @@ fn displaced(clean: &Experiment, first: f64, last: f64) -> Experiment {
     exp.input.iter_mut().enumerate().for_each(|(k, u)| {
         *u += first + (last - first) * k as f64 / (n - 1) as f64;
     });
+    exp
+}
+
+/// `exp` as the loader reads it: a noisy displacement made monotone between the test's reversals
+/// (raw, the noise biases an irregular path's line by +0.1..+0.28 mm).
+fn loaded(mut exp: Experiment) -> Experiment {
+    if let Some((u, _)) = monotone(&exp.input) {
+        exp.input = u;
+    }
     exp
 }
 
@@ -519,12 +546,6 @@ fn displaced(clean: &Experiment, first: f64, last: f64) -> Experiment {
 /// path's line by 0.1-0.28 mm (seeds 1-3, measured; the step-wise path's by up to 0.035).
 #[test]
 fn a_drifting_displacement_zero_is_named_as_the_transducers_not_the_load_cells() {
-    let loaded = |mut exp: Experiment| {
-        if let Some((u, _)) = monotone(&exp.input) {
-            exp.input = u;
-        }
-        exp
-    };
     for (path, name) in PATHS {
         let clean = record(&[], path, Noise::HIGH, 1).unwrap();
         let control = diagnose(loaded(clean.clone())).nrmse;
@@ -555,6 +576,13 @@ fn a_drifting_displacement_zero_is_named_as_the_transducers_not_the_load_cells()
         );
         assert!(
             subtract_option(&displaced.evidence).starts_with("displacement="),
+            "{name}: {}",
+            displaced.evidence
+        );
+        // Nothing else is off, and the estimate takes nothing off the force.
+        assert_eq!(
+            (displaced.with_force, displaced.force_line),
+            (None, None),
             "{name}: {}",
             displaced.evidence
         );
@@ -593,5 +621,84 @@ fn a_line_running_beyond_a_quarter_of_the_peak_is_not_taken_for_a_drift() {
         displaced.evidence.contains("stands in for another misfit"),
         "{}",
         displaced.evidence
+    );
+}
+
+/// A displacement drift of 0.5 mm beside a load cell's offset of 3% of the peak force, or beside
+/// its drift of -2% over the test: named as a displacement drift whose line is estimated together
+/// with what the force needs beside it, and the two together fit as well as the clean record
+/// (each line estimated alone, a force offset beside the drift was named a force drift, and the
+/// displacement's line came out with the wrong sign: found by review). The split between the
+/// two is not sharp, since a line in the displacement and one in the force leave alike
+/// residuals over part of a test (seeds 1-3: the displacement's line ended at 0.31-0.64 mm, and
+/// beside the irregular path's drift of seed 1 a constant force of a third of the drift's end
+/// was chosen), so the displacement's line is held to a factor of two and the force's part to
+/// its sign at the last sample.
+#[test]
+fn a_displacement_drift_beside_a_load_cells_offset_or_drift_is_estimated_with_it() {
+    let within_two = |estimate: f64, truth: f64| (0.5..=2.0).contains(&(estimate / truth));
+    for (path, name) in PATHS {
+        let clean = record(&[], path, Noise::HIGH, 1).unwrap();
+        let control = diagnose(loaded(clean.clone())).nrmse;
+        let p = peak(&clean.output);
+        for (first, last, kind) in [(0.03, 0.03, "offset"), (0.0, -0.02, "drift")] {
+            let Found {
+                nrmse,
+                force,
+                drift,
+                displaced,
+                start,
+                ..
+            } = diagnose(loaded(displaced(&drifted(&clean, first, last), 0.0, 0.5)));
+            let dd = displaced.expect("a line in the force weighs the displacement's");
+            println!(
+                "{name}, force {kind}: bw {nrmse:.4}, control {control:.4}: {}",
+                dd.evidence
+            );
+            assert!(dd.significant, "{name}, {kind}: {}", dd.evidence);
+            let [a, b] = dd.line.unwrap();
+            assert!(
+                a.abs() < 0.1 && within_two(b, 0.5),
+                "{name}, {kind}: {a}..{b} for 0..0.5"
+            );
+            let at_last = match (dd.with_force, dd.force_line) {
+                (Some(c), None) => c,
+                (None, Some([_, l])) => l,
+                other => panic!("{name}, {kind}: {other:?}: {}", dd.evidence),
+            };
+            assert!(
+                at_last * last > 0.0,
+                "{name}, {kind}: force {at_last} at the last sample for {}",
+                p * last
+            );
+            assert!(
+                dd.nrmse_with < 1.05 * control,
+                "{name}, {kind}: {} against {control}",
+                dd.nrmse_with
+            );
+            let option = subtract_option(&dd.evidence);
+            assert!(
+                option.starts_with("displacement=") && option.contains(" --subtract force="),
+                "{name}, {kind}: {option}"
+            );
+            for check in [&force, &drift] {
+                assert!(!check.significant, "{name}, {kind}: {}", check.evidence);
+            }
+            assert!(!named(&start), "{name}, {kind}: {start:?}");
+        }
+    }
+}
+
+/// The loop on the step-wise record with both: `--subtract` as printed takes both off.
+#[test]
+fn the_option_a_displacement_drift_beside_a_force_offset_gives_takes_both_off() {
+    let clean = record(&[], Path::StepWise, Noise::HIGH, 1).unwrap();
+    let exp = displaced(&drifted(&clean, 0.03, 0.03), 0.0, 0.5);
+    the_option_takes_it_off(
+        "displacement_and_force_offset",
+        &clean,
+        &exp,
+        "displacement_drift",
+        "displacement",
     );
 }

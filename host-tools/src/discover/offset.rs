@@ -115,7 +115,9 @@ pub struct OffsetCheck {
     pub relative: f64,
     /// For a named start away from rest: the constant force that, taken off
     /// as well, adds a BIC change below -10 to the start alone (a force offset
-    /// the model had absorbed into its first jump), if any.
+    /// the model had absorbed into its first jump), if any. For a drifting
+    /// displacement zero: the constant force fitted together with its line
+    /// ([`displacement_drift`]), if it adds a BIC change below -10.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub with_force: Option<f64>,
     /// For a drift: the channel's zero the line puts at the first and at
@@ -123,6 +125,12 @@ pub struct OffsetCheck {
     /// takes off.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub line: Option<[f64; 2]>,
+    /// For a drifting displacement zero: the line in the force (kN at the
+    /// first and at the last sample) fitted together with its own, where it
+    /// adds a BIC change below -10 ([`displacement_drift`]); its option takes
+    /// both off.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub force_line: Option<[f64; 2]>,
     /// Share of the squared error that removing the offset removes.
     pub share: f64,
     /// NRMSE with the offset removed: the parameters as fitted for the force
@@ -360,14 +368,15 @@ pub(super) fn peak(x: &[f64]) -> f64 {
 /// holds the constant, so the offset is not named beside it: offsets for one
 /// channel add up, and a user giving both options took the constant off
 /// twice (found by review). Where the displacement's drift is named
-/// ([`Offset::DisplacementDrift`]) the constant is part of what it leaves.
+/// ([`Offset::DisplacementDrift`]) the constant is part of what it leaves, or
+/// of what its estimate took off the force beside its line.
 pub fn force(
     model: &str,
     d: &Diagnosis,
     nrmse: f64,
     suspects: &[Suspect],
     start_named: bool,
-    drift_named: Option<Offset>,
+    drift_named: Option<&OffsetCheck>,
 ) -> Option<OffsetCheck> {
     let m = mean(&d.residual);
     let after: Vec<f64> = d.residual.iter().map(|r| r - m).collect();
@@ -431,12 +440,19 @@ pub fn force(
         "Not named on its own: the record starts away from rest (below), and the model's first \
          jump leaves a constant of its own; the start's refit weighs a constant force as well."
             .into()
-    } else if let (Some(Offset::DisplacementDrift), true) =
-        (drift_named, at_least_as_good && at_start)
-    {
-        "Not named on its own: the displacement drift (below) leaves a constant force of its \
-         own (the elastic spring times the line); take its line off and look again."
-            .into()
+    } else if let (Some(c), true) = (
+        drift_named.filter(|c| c.offset == Offset::DisplacementDrift),
+        at_least_as_good && at_start,
+    ) {
+        if c.with_force.is_some() || c.force_line.is_some() {
+            "Not named on its own: the displacement drift (below) was estimated together with \
+             what the force needs beside its line, and its option takes both off."
+                .into()
+        } else {
+            "Not named on its own: the displacement drift (below) leaves a constant force of \
+             its own (the elastic spring times the line); take its line off and look again."
+                .into()
+        }
     } else if drift_named.is_some() && at_least_as_good && at_start {
         "Not named on its own: the force drift (below) takes off a line that holds this \
          constant; its option alone takes off both (giving both would take the constant off \
@@ -462,6 +478,7 @@ pub fn force(
         relative,
         with_force: None,
         line: None,
+        force_line: None,
         share: gain.share,
         nrmse_with: gain.nrmse_with,
         delta_bic: gain.delta_bic,
@@ -558,11 +575,22 @@ pub fn drift(
         }
     } else if !gain.significant() {
         gain.not_significant()
+    } else if let Some([a, b]) = displaced.and_then(|c| c.force_line) {
+        format!(
+            "Not named on its own: fitted together with a line in the displacement (below), the \
+             load cell's zero drifts from {a:+.dp$} kN to {b:+.dp$} kN, and the displacement \
+             drift's option takes both off (this line, estimated alone, holds part of the \
+             displacement's)."
+        )
     } else if let Some(c) = displaced {
         format!(
             "Not named: a line in the displacement (below) fits decisively better, {:.4}; the \
-             displacement's zero drifts, not the load cell's.",
-            c.nrmse_with
+             displacement's zero drifts, not the load cell's{}.",
+            c.nrmse_with,
+            c.with_force.map_or(String::new(), |f| format!(
+                ", which reads a constant {f:+.dp$} kN off beside it (fitted together with the \
+                 displacement's line; its option takes both off)"
+            ))
         )
     } else if beyond_constant.delta_bic >= SIGNIFICANT_BIC {
         "Not named: a constant explains it as well (weighed as the force offset).".into()
@@ -586,6 +614,7 @@ pub fn drift(
         relative,
         with_force: None,
         line: Some([first, last]),
+        force_line: None,
         share: gain.share,
         nrmse_with: gain.nrmse_with,
         delta_bic: gain.delta_bic,
@@ -697,6 +726,7 @@ pub fn start(
         relative,
         with_force: force,
         line: None,
+        force_line: None,
         share: gain.share,
         nrmse_with: gain.nrmse_with,
         delta_bic: gain.delta_bic,
@@ -827,12 +857,14 @@ pub fn of_ladder(discovery: &Discovery) -> Offsets {
 }
 
 /// Which drift is named, if any.
-fn named_drift(force: &Option<OffsetCheck>, displacement: &Option<OffsetCheck>) -> Option<Offset> {
+fn named_drift<'a>(
+    force: &'a Option<OffsetCheck>,
+    displacement: &'a Option<OffsetCheck>,
+) -> Option<&'a OffsetCheck> {
     [force, displacement]
         .into_iter()
         .flatten()
         .find(|c| c.significant)
-        .map(|c| c.offset)
 }
 
 /// Whether the start away from rest stays named beside the drifting
