@@ -170,42 +170,84 @@ fn solve_normal(mut m: Vec<Vec<f64>>, mut b: Vec<f64>) -> Option<Vec<f64>> {
     Some(b)
 }
 
-/// The line that, taken off the displacement of `problem` with `part` taken
-/// off the force, fits best, from the fitted parameters `x0`: Gauss-Newton on
-/// the line's two ends (forward differences of the model's force) and the
-/// force's numbers (the residual moves with them one for one), each round
-/// followed by a refit of the model. `None` where a simulation or a refit
-/// fails or the step is singular (a model with no stiffness to feel a
-/// displacement).
-fn estimate(problem: &Problem, x0: &[f64], part: ForcePart) -> Option<Estimate> {
-    let n = problem.exp.input.len();
-    let h = STEP * peak(&problem.exp.input);
-    if n < 3 || h.is_nan() || h <= 0.0 {
-        return None;
+/// The residual's derivatives with respect to the line's two ends, by
+/// forward differences of step `h`, at `displacement` and `force` taken off
+/// `problem` with the parameters `x`, where the residual is `r`.
+fn line_columns(
+    problem: &Problem,
+    x: &[f64],
+    displacement: Baseline,
+    force: Baseline,
+    r: &[f64],
+    h: f64,
+) -> Option<[Vec<f64>; 2]> {
+    let column = |moved: Baseline| -> Option<Vec<f64>> {
+        let moved = residual(&without(problem, moved, force), x)?;
+        Some(moved.iter().zip(r).map(|(m, r)| (m - r) / h).collect())
+    };
+    Some([
+        column(Baseline {
+            first: displacement.first + h,
+            ..displacement
+        })?,
+        column(Baseline {
+            last: displacement.last + h,
+            ..displacement
+        })?,
+    ])
+}
+
+/// Where every estimate starts: the fitted parameters, their residual (the
+/// diagnosis's) and its derivatives with respect to the line's two ends at
+/// nothing taken off, which the first Gauss-Newton round of every force's
+/// part shares; with the difference step.
+struct Origin<'a> {
+    x: &'a [f64],
+    residual: &'a [f64],
+    columns: [Vec<f64>; 2],
+    h: f64,
+}
+
+impl<'a> Origin<'a> {
+    /// `None` where the record is too short, has no displacement to step or
+    /// cannot be simulated.
+    fn of(problem: &Problem, x: &'a [f64], residual: &'a [f64]) -> Option<Self> {
+        let h = STEP * peak(&problem.exp.input);
+        if problem.exp.input.len() < 3 || h.is_nan() || h <= 0.0 {
+            return None;
+        }
+        let zero = Baseline::line(0.0, 0.0);
+        let columns = line_columns(problem, x, zero, zero, residual, h)?;
+        Some(Origin {
+            x,
+            residual,
+            columns,
+            h,
+        })
     }
+}
+
+/// The line that, taken off the displacement of `problem` with `part` taken
+/// off the force, fits best, from `origin`: Gauss-Newton on the line's two
+/// ends (forward differences of the model's force) and the force's numbers
+/// (the residual moves with them one for one), each round followed by a
+/// refit of the model. `None` where a simulation or a refit fails or the
+/// step is singular (a model with no stiffness to feel a displacement).
+fn estimate(problem: &Problem, origin: &Origin, part: ForcePart) -> Option<Estimate> {
+    let n = problem.exp.input.len();
     let s: Vec<f64> = (0..n).map(|k| k as f64 / (n - 1) as f64).collect();
     let mut displacement = Baseline::line(0.0, 0.0);
     let mut force = Baseline::line(0.0, 0.0);
-    let mut x = x0.to_vec();
-    let mut r = residual(problem, &x)?;
-    for _ in 0..ROUNDS {
-        // The residual's derivatives with respect to the line's two ends, by
-        // forward differences, and to the force's numbers: taking `F` off the
-        // measured force adds `F` to the residual (model less measured).
-        let column = |moved: Baseline| -> Option<Vec<f64>> {
-            let moved = residual(&without(problem, moved, force), &x)?;
-            Some(moved.iter().zip(&r).map(|(m, r)| (m - r) / h).collect())
+    let mut x = origin.x.to_vec();
+    let mut r = origin.residual.to_vec();
+    for round in 0..ROUNDS {
+        // The residual's derivatives with respect to the line's two ends and
+        // to the force's numbers: taking `F` off the measured force adds `F`
+        // to the residual (model less measured).
+        let mut columns = match round {
+            0 => origin.columns.to_vec(),
+            _ => line_columns(problem, &x, displacement, force, &r, origin.h)?.to_vec(),
         };
-        let mut columns = vec![
-            column(Baseline {
-                first: displacement.first + h,
-                ..displacement
-            })?,
-            column(Baseline {
-                last: displacement.last + h,
-                ..displacement
-            })?,
-        ];
         match part {
             ForcePart::None => {}
             ForcePart::Constant => columns.push(vec![1.0; n]),
@@ -246,21 +288,21 @@ fn estimate(problem: &Problem, x0: &[f64], part: ForcePart) -> Option<Estimate> 
     })
 }
 
-/// The estimate with what the force needs beside the line: a constant where
-/// it adds a BIC change below -10 (by `weigh`, the residual before, after and
-/// the numbers added) to the line alone, a line in the force where that adds
-/// one below -10 to the better of those two (the way a start keeps its
-/// constant force, [`offset::start`](super::offset::start)). With the line
-/// estimated alone.
+/// The line estimated alone, and with what the force needs beside it where
+/// that is worth keeping: a constant where it adds a BIC change below -10
+/// (by `weigh`, the residual before, after and the numbers added) to the
+/// line alone, a line in the force where that adds one below -10 to the
+/// better of those two (the way a start keeps its constant force,
+/// [`offset::start`](super::offset::start)).
 fn joint(
     problem: &Problem,
-    x0: &[f64],
+    origin: &Origin,
     weigh: impl Fn(&[f64], &[f64], usize) -> Option<f64>,
-) -> Option<(Estimate, Estimate)> {
-    let alone = estimate(problem, x0, ForcePart::None)?;
+) -> Option<(Estimate, Option<Estimate>)> {
+    let alone = estimate(problem, origin, ForcePart::None)?;
     let mut best: Option<Estimate> = None;
     for part in [ForcePart::Constant, ForcePart::Line] {
-        let Some(e) = estimate(problem, x0, part) else {
+        let Some(e) = estimate(problem, origin, part) else {
             continue;
         };
         let before = best.as_ref().unwrap_or(&alone);
@@ -269,16 +311,7 @@ fn joint(
             best = Some(e);
         }
     }
-    Some(match best {
-        Some(b) => (b, alone),
-        None => (
-            Estimate {
-                residual: alone.residual.clone(),
-                ..alone
-            },
-            alone,
-        ),
-    })
+    Some((alone, best))
 }
 
 /// Looks for a drifting displacement zero in the displacement-driven fit
@@ -327,7 +360,9 @@ pub fn check(
     let weigh = |before: &[f64], after: &[f64], k: usize| {
         Gain::of(d, nrmse, before, after, k, scale).map(|g| g.delta_bic)
     };
-    let (found, alone) = joint(problem, &outcome.x, weigh)?;
+    let origin = Origin::of(problem, &outcome.x, r)?;
+    let (alone, beside) = joint(problem, &origin, weigh)?;
+    let found = beside.as_ref().unwrap_or(&alone);
     let k = found.count();
     let after = &found.residual;
     let gain = Gain::of(d, nrmse, r, after, k, scale)?;
