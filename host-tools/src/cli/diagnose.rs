@@ -278,11 +278,26 @@ impl Beyond {
     }
 
     /// Takes the check for a lag between the channels ([`lag::of_fit`],
-    /// [`lag::of_ladder`]). A named lag leaves a residual that follows the
+    /// [`lag::of_ladder`]), after the offsets ([`Beyond::set_offsets`]): a
+    /// named offset or drift that fits better is taken off first
+    /// ([`lag::yield_to_offset`]). A named lag leaves a residual that follows the
     /// speed of loading as well (a force one sample late was flagged as rate
     /// dependence: found by review), which the rate check's evidence then
     /// says.
-    pub fn set_lag(&mut self, lag: Option<LagCheck>) {
+    pub fn set_lag(&mut self, mut lag: Option<LagCheck>) {
+        let offsets = [
+            ("force offset", &self.force_offset),
+            ("start away from rest", &self.start_offset),
+            ("force drift", &self.force_drift),
+            ("displacement drift", &self.displacement_drift),
+        ];
+        let best = offsets
+            .into_iter()
+            .filter_map(|(name, o)| o.as_ref().filter(|o| o.significant).map(|o| (name, o)))
+            .min_by(|a, b| a.1.nrmse_with.total_cmp(&b.1.nrmse_with));
+        if let (Some(l), Some((name, o))) = (lag.as_mut(), best) {
+            lag::yield_to_offset(l, name, o);
+        }
         if let (Some(l), Some(r)) = (&lag, &mut self.rate) {
             if l.significant && r.significant {
                 r.evidence.push_str(

@@ -38,7 +38,7 @@
 
 use super::diagnosis::Diagnosis;
 use super::ladder::{Discovery, Step};
-use super::offset::{refit_residual, scale_of, Gain};
+use super::offset::{refit_residual, scale_of, Gain, OffsetCheck};
 use super::suspects::Suspect;
 use crate::fit::experiment::Drive;
 use crate::fit::objectives::{Target, ENVELOPE_FLOOR};
@@ -277,9 +277,9 @@ fn weigh(
             ""
         };
         format!(
-            "{effect}Channels out of step make a loop's steep branches lean along the \
-             displacement, which effects can stand in for: check how the two channels were \
-             sampled, and run again with `--lag force={lag}` to realign them.{dashpot}"
+            "{effect}{LAG_REMEDY} a loop's steep branches lean along the displacement, which \
+             effects can stand in for: check how the two channels were sampled, and run again \
+             with `--lag force={lag}` to realign them.{dashpot}"
         )
     } else if gain.share < 0.0 {
         format!("Not significant: realigned by a sample either way, {model} fits worse.")
@@ -307,6 +307,32 @@ fn weigh(
         changes_shift: timing,
         evidence,
     })
+}
+
+/// How a named lag's advice begins: [`yield_to_offset`] replaces it.
+const LAG_REMEDY: &str = "Channels out of step make";
+
+/// Unnames the lag `lag` for the named zero offset or drift `offset`
+/// (called `name`) where that fits better: both are numbers that are not the
+/// model's, and the one that explains more is taken off first (a zero
+/// drifting from -3 mm back to 0 beside a force offset, on `bw+pinching`:
+/// the drift took the NRMSE to 0.0173, a force one sample late to 0.0965,
+/// and both were named; with the drift taken off, no lag was left: found by
+/// review).
+pub fn yield_to_offset(lag: &mut LagCheck, name: &str, offset: &OffsetCheck) {
+    if !(lag.significant && offset.significant && offset.nrmse_with < lag.nrmse_with) {
+        return;
+    }
+    if let Some(at) = lag.evidence.find(LAG_REMEDY) {
+        lag.evidence.truncate(at);
+    }
+    lag.evidence.push_str(&format!(
+        "Not named: the {name} (above), whose numbers are not the model's either, fits better \
+         ({:.4} against {:.4}): take it off and run again, and a lag that is there is named \
+         then.",
+        offset.nrmse_with, lag.nrmse_with
+    ));
+    lag.significant = false;
 }
 
 /// The check on one diagnosed fit (`hyst diagnose`): displacement-driven
@@ -355,6 +381,7 @@ pub fn of_ladder(discovery: &Discovery) -> Option<LagCheck> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::discover::offset::Offset;
     use crate::fit::experiment::Experiment;
     use crate::model::ModelSpec;
 
@@ -379,5 +406,61 @@ mod tests {
         // Too few samples left for the five parameters.
         assert!(realigned(&problem, 6).is_none());
         assert!(realigned(&problem, 0).is_none());
+    }
+
+    /// The numbers of the review's record (a zero drifting from -3 mm back to 0 beside a force
+    /// offset of -3%, on `bw+pinching`): the drift reached 0.0173, the realignment 0.0965.
+    #[test]
+    fn a_lag_yields_to_a_named_offset_that_fits_better() {
+        let lag = LagCheck {
+            model: "bw+pinching".into(),
+            significant: true,
+            samples: 1,
+            share: 0.106,
+            nrmse_with: 0.0965,
+            delta_bic: -22.0,
+            n_eff: 240.0,
+            best_effect: None,
+            changes_shift: Some(0),
+            evidence: format!(
+                "With the force read 1 sample late, the fit takes the NRMSE from 0.1021 to \
+                 0.0965. {LAG_REMEDY} a loop's steep branches lean, and run again with \
+                 `--lag force=1` to realign them."
+            ),
+        };
+        let drift = |nrmse_with: f64, significant: bool| OffsetCheck {
+            offset: Offset::DisplacementDrift,
+            model: "bw+pinching".into(),
+            significant,
+            value: 3.16,
+            relative: 0.2,
+            with_force: Some(-1.05),
+            line: Some([-3.02, 0.14]),
+            force_line: None,
+            share: 0.97,
+            nrmse_with,
+            delta_bic: -5628.0,
+            n_eff: 240.0,
+            asymmetry_nrmse: None,
+            evidence: String::new(),
+        };
+        let mut yielded = lag.clone();
+        yield_to_offset(&mut yielded, "displacement drift", &drift(0.0173, true));
+        assert!(!yielded.significant);
+        assert!(!yielded.evidence.contains("--lag"), "{}", yielded.evidence);
+        assert!(
+            yielded.evidence.contains(
+                "Not named: the displacement drift (above), whose numbers are not the model's \
+                 either, fits better (0.0173 against 0.0965)"
+            ),
+            "{}",
+            yielded.evidence
+        );
+        // An offset that fits worse, or is not named, leaves the lag as it was.
+        for offset in [drift(0.0990, true), drift(0.0173, false)] {
+            let mut kept = lag.clone();
+            yield_to_offset(&mut kept, "displacement drift", &offset);
+            assert_eq!(kept, lag);
+        }
     }
 }
