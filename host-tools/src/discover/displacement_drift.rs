@@ -401,9 +401,6 @@ pub fn check(
     }
     let nrmse = outcome.scores.nrmse;
     let scale = scale_of(suspects);
-    // A named start holds unless the line beats it decisively: the line's
-    // first end can hold a start, and a start refitted with a constant force
-    // can take up part of a drift.
     let start_named = start.filter(|s| s.significant);
     // The force line, as the force drift fits it. A named start opens the
     // check as well: a drift from 1.5 mm back to zero beside a load cell's
@@ -478,8 +475,12 @@ pub fn check(
         Some(h) => Some(Gain::of(d, nrmse, &h.residual, after, 1, scale)?),
         None => None,
     };
-    let start_holds = slope.as_ref().is_some_and(|g| !g.significant())
-        || start_named.is_some_and(|s| gain.delta_bic >= s.delta_bic + SIGNIFICANT_BIC);
+    let slope_short = slope.as_ref().is_some_and(|g| !g.significant());
+    // And the start holds unless the line beats it decisively: the line's
+    // first end can hold a start, and a start refitted with a constant force
+    // can take up part of a drift.
+    let start_holds =
+        slope_short || start_named.is_some_and(|s| gain.delta_bic >= s.delta_bic + SIGNIFICANT_BIC);
     let peak_u = peak(&problem.exp.input);
     let (first, last) = (found.displacement.first, found.displacement.last);
     let reach = first.abs().max(last.abs()) / peak_u;
@@ -609,8 +610,7 @@ pub fn check(
             100.0 * g.share,
             100.0 * MIN_SHARE
         )
-    } else if let Some(w) = held_words.filter(|_| slope.as_ref().is_some_and(|g| !g.significant()))
-    {
+    } else if let Some(w) = held_words.filter(|_| slope_short) {
         format!(
             "Not named: the record starts away from rest (below); {w}, where an offset must \
              remove {:.0}% at a BIC change below -10.",
