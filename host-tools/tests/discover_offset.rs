@@ -159,6 +159,49 @@ fn hidden_asymmetry_is_not_taken_for_an_offset() {
     }
 }
 
+/// Hidden asymmetry on a record starting 0.5 mm off: the start is named, and its refit leaves
+/// the force as measured, since asymmetry refitted from rest explains what a constant or a line
+/// in the force would take (found by review: with a constant taken off beside the start, the
+/// next run was left a weaker asymmetry, and a start whose refit alone fits worse was named on
+/// the strength of the constant).
+#[test]
+fn hidden_asymmetry_beside_a_start_is_not_taken_for_the_load_cells_zero() {
+    for (path, name) in PATHS {
+        let mut exp = record(&[EffectKind::Asymmetry], path, Noise::HIGH, 1).unwrap();
+        exp.input.iter_mut().for_each(|u| *u += 0.5);
+        let Found {
+            start,
+            asymmetry,
+            drift,
+            displaced,
+            force,
+            ..
+        } = diagnose(exp);
+        let start = start.expect("the record starts 0.5 mm off");
+        println!("{name}: {}", start.evidence);
+        assert!(asymmetry, "{name}: asymmetry not named");
+        assert!(start.significant, "{name}: {}", start.evidence);
+        assert!(
+            start.with_force.is_none() && start.force_line.is_none(),
+            "{name}: {}",
+            start.evidence
+        );
+        assert!(
+            start.evidence.contains("Beside asymmetry, the start takes"),
+            "{name}: {}",
+            start.evidence
+        );
+        let option = subtract_option(&start.evidence);
+        assert!(
+            option.starts_with("displacement=") && !option.contains("force"),
+            "{name}: {option}"
+        );
+        assert!(!drift.significant, "{name}: {}", drift.evidence);
+        assert!(!force.significant, "{name}: {}", force.evidence);
+        assert!(!named(&displaced), "{name}: {displaced:?}");
+    }
+}
+
 #[test]
 fn records_with_nothing_hidden_name_no_offset() {
     for (path, name) in PATHS {
@@ -761,11 +804,51 @@ fn a_drift_from_a_start_away_from_rest_is_weighed_against_the_start() {
 fn a_start_beside_a_load_cells_drift_is_not_taken_for_a_displacement_drift() {
     for (path, name) in PATHS {
         let clean = record(&[], path, Noise::HIGH, 1).unwrap();
+        let control = diagnose(loaded(clean.clone())).nrmse;
         let Found {
-            displaced, start, ..
+            displaced,
+            start,
+            drift,
+            ..
         } = diagnose(loaded(displaced(&drifted(&clean, 0.0, 0.02), 0.5, 0.5)));
         let start = start.expect("the record starts 0.5 mm off");
         assert!(start.significant, "{name}: {}", start.evidence);
+        assert!(!drift.significant, "{name}: {}", drift.evidence);
+        if path == Path::StepWise {
+            // On a path of growing amplitude asymmetry follows the drift
+            // (refitted from rest, it reaches the record's error without
+            // the drift: 0.0275 against 0.0284 with a constant, measured):
+            // the start's refit leaves the force as measured.
+            assert!(
+                start.with_force.is_none() && start.force_line.is_none(),
+                "{name}: {}",
+                start.evidence
+            );
+            assert!(
+                start
+                    .evidence
+                    .contains("but asymmetry, refitted from rest there"),
+                "{name}: {}",
+                start.evidence
+            );
+        } else {
+            // The start's refit keeps the load cell's drift beside it, its
+            // size to a fifth (measured: +12%; the line is fitted to what the
+            // refit leaves, not refitted with it), and its option takes both
+            // off (the loop below).
+            let [a, b] = start.force_line.expect("a line in the force");
+            let p = peak(&clean.output);
+            assert!(
+                ((b - a) / p - 0.02).abs() < 0.004,
+                "{name}: {a}..{b} of {p}"
+            );
+            assert!(
+                (start.nrmse_with - control).abs() < 0.05 * control,
+                "{name}: {} against {control}",
+                start.nrmse_with
+            );
+            assert!(subtract_option(&start.evidence).contains("--subtract force="));
+        }
         let dd = displaced.expect("a line in the force opens the check");
         println!("{name}: {}", dd.evidence);
         assert!(!dd.significant, "{name}: {}", dd.evidence);
@@ -787,6 +870,23 @@ fn the_option_a_displacement_drift_beside_a_force_offset_gives_takes_both_off() 
         &clean,
         &exp,
         "displacement_drift",
+        "displacement",
+    );
+}
+
+/// The loop on a record starting 0.5 mm off beside a load cell drifting 2% of the peak force
+/// (found by review: the start's option took off a constant force, and the drift was named only
+/// on the next run): the start's option as printed takes both off. The irregular path: on the
+/// step-wise one asymmetry follows the drift (above).
+#[test]
+fn the_option_a_start_beside_a_load_cells_drift_gives_takes_both_off() {
+    let clean = record(&[], Path::Irregular(7), Noise::HIGH, 1).unwrap();
+    let exp = displaced(&drifted(&clean, 0.0, 0.02), 0.5, 0.5);
+    the_option_takes_it_off(
+        "start_and_force_drift",
+        &clean,
+        &exp,
+        "start_offset",
         "displacement",
     );
 }

@@ -5,7 +5,7 @@
 //! -386, and a displacement offset left pinching named on an irregular path).
 //!
 //! Checks on displacement-driven fits, each weighed like a suspect (see
-//! [`suspects`](super::suspects)): BIC at the larger of the suspects'
+//! [`suspects`]): BIC at the larger of the suspects'
 //! effective sample size (that of the best model they found, so that offsets
 //! and effects are on one scale) and that of the residual with the offset
 //! removed, significant below -10, and only when the offset removes at least
@@ -36,7 +36,11 @@
 //!   force offset (a model near its elastic limit turns it into a constant
 //!   z), so the start is also named where it adds significantly to a constant
 //!   force alone, and a named start keeps the refit's own constant force
-//!   where that adds a BIC change below -10 to the start alone. First displacements below
+//!   where that adds a BIC change below -10 to the start alone; or, where
+//!   the load cell drifts beside the start, a line in the sample number
+//!   fitted to what the refit leaves, kept where it is significant as an
+//!   offset beyond the constant (a BIC change below -10 and [`MIN_SHARE`] of
+//!   what the start and the constant leave). First displacements below
 //!   [`START_FLOOR`] of the peak are left out. In a Bouc-Wen model a
 //!   displacement offset acts only through this start and the elastic spring
 //!   `alpha k0 u0`, a constant force. Where the start is named the force
@@ -67,7 +71,7 @@ use super::diagnosis::Diagnosis;
 use super::displacement_drift;
 use super::ladder::{Discovery, Step};
 use super::signature::mean;
-use super::suspects::{effective_n, residual, Suspect, SIGNIFICANT_BIC};
+use super::suspects::{self, effective_n, residual, Suspect, WeighOptions, SIGNIFICANT_BIC};
 use crate::fit::experiment::Drive;
 use crate::fit::problem::Problem;
 use crate::fit::run::{self, Method, Outcome, Quiet};
@@ -115,7 +119,8 @@ pub struct OffsetCheck {
     pub relative: f64,
     /// For a named start away from rest: the constant force that, taken off
     /// as well, adds a BIC change below -10 to the start alone (a force offset
-    /// the model had absorbed into its first jump), if any. For a drifting
+    /// the model had absorbed into its first jump), if any and no line is
+    /// kept (`force_line`). For a drifting
     /// displacement zero: the constant force fitted together with its line
     /// ([`displacement_drift`]), if it adds a BIC change below -10.
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -127,8 +132,9 @@ pub struct OffsetCheck {
     pub line: Option<[f64; 2]>,
     /// For a drifting displacement zero: the line in the force (kN at the
     /// first and at the last sample) fitted together with its own, where it
-    /// adds a BIC change below -10 ([`displacement_drift`]); its option takes
-    /// both off.
+    /// adds a BIC change below -10 ([`displacement_drift`]); for a named
+    /// start, the line in the force its refit leaves, where it is significant
+    /// beyond a constant ([`start`]). The option takes both off.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub force_line: Option<[f64; 2]>,
     /// Share of the squared error that removing the offset removes.
@@ -137,7 +143,7 @@ pub struct OffsetCheck {
     /// offset, refitted from rest at the first sample for the start.
     pub nrmse_with: f64,
     /// BIC change from removing the offset (one added number, two with
-    /// `with_force`).
+    /// `with_force`, three with a start's `force_line`).
     pub delta_bic: f64,
     /// Effective sample size used: the larger of the suspects' (that of the
     /// best model they found, so that the offset and the effects are weighed
@@ -153,6 +159,7 @@ pub struct OffsetCheck {
 /// The weighing the checks share (the offsets here, the lag of
 /// [`lag`](super::lag)): the residual of `d` (NRMSE `nrmse`) against the
 /// residual `after` removing `k` numbers.
+#[derive(Clone, Copy)]
 pub(super) struct Gain {
     pub(super) share: f64,
     pub(super) nrmse_with: f64,
@@ -438,7 +445,8 @@ pub fn force(
         gain.not_significant()
     } else if start_named {
         "Not named on its own: the record starts away from rest (below), and the model's first \
-         jump leaves a constant of its own; the start's refit weighs a constant force as well."
+         jump leaves a constant of its own; the start's refit weighs the load cell's zero as well \
+         (a constant, or a line where it drifts)."
             .into()
     } else if let (Some(c), true) = (
         drift_named.filter(|c| c.offset == Offset::DisplacementDrift),
@@ -504,7 +512,7 @@ pub fn drift(
     d: &Diagnosis,
     nrmse: f64,
     suspects: &[Suspect],
-    start_named: bool,
+    start_named: Option<&OffsetCheck>,
     displacement: Option<&OffsetCheck>,
 ) -> Option<OffsetCheck> {
     let model = spec.to_string();
@@ -534,7 +542,7 @@ pub fn drift(
         && beyond_constant.delta_bic < SIGNIFICANT_BIC
         && asymmetry_known
         && at_least_as_good
-        && !start_named
+        && start_named.is_none()
         && displaced.is_none();
     // Where the line puts the zero at the first and the last sample (a
     // constant offset beside the drift shows in the first: found by review).
@@ -594,7 +602,13 @@ pub fn drift(
         )
     } else if beyond_constant.delta_bic >= SIGNIFICANT_BIC {
         "Not named: a constant explains it as well (weighed as the force offset).".into()
-    } else if start_named {
+    } else if let Some([a, b]) = start_named.and_then(|c| c.force_line) {
+        format!(
+            "Not named on its own: refitted from rest at the record's first sample (below), the \
+             load cell's zero drifts from {a:+.dp$} kN to {b:+.dp$} kN, and the start's option \
+             takes both off."
+        )
+    } else if start_named.is_some() {
         "Not named: the record starts away from rest (below), whose refit it would meet.".into()
     } else if !asymmetry_known {
         "Not named: asymmetry, which can stand in for a drift on a test of growing amplitude, \
@@ -666,7 +680,8 @@ pub fn start(
     // fit's compromise, so the same parameters alone recover little of it
     // (a 10 mm offset on the shared record s1: 25% of the squared error at
     // delta-BIC -6 with the same parameters).
-    let after = refit_residual(&shifted, &outcome.x)?;
+    let from_rest = run::fit(&shifted, Method::Lsq, &outcome.x, &Quiet).ok()?;
+    let after = residual(&shifted, &from_rest.x)?;
     let nrmse = outcome.scores.nrmse;
     let scale = scale_of(suspects);
     let alone = Gain::of(d, nrmse, &d.residual, &after, 1, scale)?;
@@ -680,29 +695,130 @@ pub fn start(
     let constant: Vec<f64> = d.residual.iter().map(|r| r - m0).collect();
     let beyond = Gain::of(d, nrmse, &constant, &both, 1, scale);
     let total = Gain::of(d, nrmse, &d.residual, &both, 2, scale);
+    // A load cell drifting beside the start leaves the refit a line in the
+    // sample number, which the force drift's check does not name beside a
+    // named start (the jump leaves a constant of its own): a start of 1.5 mm
+    // beside a drift of 2% of the peak force was refitted to 0.0193 with a
+    // constant (clean 0.0166), and the drift was named only on the next run
+    // (found by review). The line is weighed against the constant as a
+    // force drift is, and must be significant as an offset beyond it.
+    let line = ResidualLine::of(&after);
+    let slope = Gain::of(d, nrmse, &both, &line.after, 1, scale);
+    let with_line = Gain::of(d, nrmse, &d.residual, &line.after, 3, scale);
     // The start is named where it is significant alone or beyond the
-    // constant; the constant is kept with a named start where it adds
-    // decisively (a BIC change below -10) to the start alone, and the
-    // evidence then gives the gain of both against the fit as it was. An
-    // unnamed start is reported alone: the constant is the force check's.
-    let significant = alone.significant() || beyond.as_ref().is_some_and(Gain::significant);
-    let (gain, force) = match total {
-        Some(t) if significant && t.delta_bic - alone.delta_bic < SIGNIFICANT_BIC => (t, Some(-m)),
-        _ => (alone, None),
+    // constant. With a named start the line is kept where it is significant
+    // beyond the constant, else the constant where it adds decisively (a BIC
+    // change below -10) to the start alone; either must fit at least as well
+    // as asymmetry refitted from rest there, which explains the same
+    // lopsided residual (a start on a record with asymmetry of 4% hidden
+    // kept a line of 2.6% of the peak force, which hid the asymmetry from
+    // the next run: found by review). The evidence then gives the gain of
+    // all against the fit as it was. An unnamed start is reported alone: the
+    // force's parts are the force checks'.
+    let named = alone.significant() || beyond.as_ref().is_some_and(Gain::significant);
+    let line_part = with_line
+        .filter(|_| named && slope.as_ref().is_some_and(Gain::significant))
+        .map(|l| (l, ForcePart::Line([-line.at(0.0), -line.at(1.0)])));
+    let constant_part = total
+        .filter(|t| named && t.delta_bic - alone.delta_bic < SIGNIFICANT_BIC)
+        .map(|t| (t, ForcePart::Constant(-m)));
+    let asymmetry = if line_part.is_some() || constant_part.is_some() {
+        Asymmetry::beside_start(&shifted, &from_rest, suspects)
+    } else {
+        Asymmetry::Absent
+    };
+    let candidates = [line_part, constant_part];
+    let admitted = candidates
+        .iter()
+        .flatten()
+        .find(|(g, f)| asymmetry.admits(g.nrmse_with, matches!(f, ForcePart::Line(_))));
+    // What asymmetry holds instead, if anything.
+    let refused = candidates
+        .iter()
+        .flatten()
+        .next()
+        .filter(|_| admitted.is_none() && matches!(asymmetry, Asymmetry::Refitted(_)));
+    let (gain, force) = match admitted {
+        Some((g, f)) => (*g, Some(*f)),
+        None => (alone, None),
+    };
+    // Where asymmetry holds what the force's part would take, the start
+    // beyond a constant means nothing: it must then be significant alone or
+    // beside asymmetry, each refitted (a record with asymmetry of 0.3 hidden
+    // starting 0.5 mm off: the start alone fits worse, the start beyond a
+    // constant was named).
+    let beside_asymmetry = match (&asymmetry, refused) {
+        (Asymmetry::Refitted(a), Some(_)) => a.start_gain(d, nrmse, scale),
+        _ => None,
+    };
+    let significant = if refused.is_some() {
+        alone.significant() || beside_asymmetry.as_ref().is_some_and(Gain::significant)
+    } else {
+        named
     };
     let f0 = problem.exp.output[0];
-    let (du, df) = (decimals(peak(&problem.exp.input)), decimals(peak(&d.force)));
+    let peak_f = peak(&d.force);
+    let (du, df) = (decimals(peak(&problem.exp.input)), decimals(peak_f));
     let taken = match force {
-        Some(f) => format!(
-            " with a constant force of {f:+.df$} kN ({:+.1}% of the peak) taken off as well",
-            100.0 * f / peak(&d.force)
-        ),
         None => String::new(),
+        Some(ForcePart::Constant(f)) => format!(
+            " with a constant force of {f:+.df$} kN ({:+.1}% of the peak) taken off as well",
+            100.0 * f / peak_f
+        ),
+        Some(ForcePart::Line([a, b])) => format!(
+            " with a line taken off the force as well ({a:+.df$} kN at the first sample, \
+             {b:+.df$} kN at the last: the load cell's zero moves by {:+.1}% of the peak force; \
+             beyond a constant, the line removes {:.1}% of the squared error the start and the \
+             constant leave, delta-BIC {:+.0})",
+            100.0 * (b - a) / peak_f,
+            slope.as_ref().map_or(f64::NAN, |g| 100.0 * g.share),
+            slope.as_ref().map_or(f64::NAN, |g| g.delta_bic)
+        ),
+    };
+    let beside = match (&asymmetry, refused) {
+        (Asymmetry::Refitted(a), Some((g, f))) => format!(
+            " {} beside it would reach {:.4}, but asymmetry, refitted from rest there, reaches \
+             {:.4}: a load cell whose zero is off looks like unequal strength in the two \
+             directions, and the force is left as measured.{}",
+            f.capitalised(),
+            g.nrmse_with,
+            a.nrmse,
+            match (&beside_asymmetry, a.alone_nrmse) {
+                (Some(b), Some(alone)) => format!(
+                    " Beside asymmetry, the start takes the NRMSE from {alone:.4} to {:.4} \
+                     ({:.1}% of the squared error; delta-BIC {:+.0}).",
+                    a.nrmse,
+                    100.0 * b.share,
+                    b.delta_bic
+                ),
+                _ => String::new(),
+            }
+        ),
+        (Asymmetry::Refitted(a), None) => force.map_or(String::new(), |f| {
+            format!(
+                " Asymmetry, refitted from rest there, reaches {:.4}: no better than {}, which \
+                 is not a parameter of the model.",
+                a.nrmse,
+                f.name()
+            )
+        }),
+        (Asymmetry::NotWeighed, _) if line_part.is_some() => " A line in the force beside it is \
+             not kept: asymmetry, which can stand in for a load cell's drift, was not weighed \
+             (add it to --candidates to compare)."
+            .into(),
+        _ => String::new(),
     };
     let verdict = if !significant {
-        gain.not_significant()
+        match &beside_asymmetry {
+            Some(b) => b.not_significant(),
+            None => gain.not_significant(),
+        }
     } else {
-        let also = force.map_or(String::new(), |f| format!(" --subtract force={f:.df$}"));
+        let also = match force {
+            None => String::new(),
+            Some(ForcePart::Constant(f)) => format!(" --subtract force={f:.df$}"),
+            Some(ForcePart::Line([a, b])) => format!(" --subtract force={a:.df$}..{b:.df$}"),
+        };
         format!(
             "{START_REMEDY}, run again with `--subtract displacement={u0:.du$}{also}` (effects \
              named for this record may stand in for the offset); if the specimen was loaded \
@@ -713,8 +829,8 @@ pub fn start(
     let evidence = format!(
         "The record starts at displacement {u0:+.du$} mm ({:+.1}% of its peak) and force \
          {f0:+.df$} kN; the models start at rest at zero, so their first step is a jump of \
-         {u0:+.du$} mm. Refitted from rest at the first sample{taken}, the model takes {}. \
-         {verdict}",
+         {u0:+.du$} mm. Refitted from rest at the first sample{taken}, the model takes {}.\
+         {beside} {verdict}",
         100.0 * relative,
         gain.words(nrmse)
     );
@@ -724,9 +840,15 @@ pub fn start(
         significant,
         value: u0,
         relative,
-        with_force: force,
+        with_force: match force {
+            Some(ForcePart::Constant(f)) => Some(f),
+            _ => None,
+        },
         line: None,
-        force_line: None,
+        force_line: match force {
+            Some(ForcePart::Line(l)) => Some(l),
+            _ => None,
+        },
         share: gain.share,
         nrmse_with: gain.nrmse_with,
         delta_bic: gain.delta_bic,
@@ -734,6 +856,104 @@ pub fn start(
         asymmetry_nrmse: None,
         evidence,
     })
+}
+
+/// Asymmetry weighed against the force a named start's refit takes off
+/// beside it ([`start`]).
+enum Asymmetry {
+    /// In the model already, not weighed against the force, or it cannot be
+    /// fitted: nothing to hold the force against.
+    Absent,
+    /// Not among the candidates weighed.
+    NotWeighed,
+    /// Refitted from rest at the first sample.
+    Refitted(AsymmetryFromRest),
+}
+
+/// Asymmetry refitted from rest at a record's first sample.
+struct AsymmetryFromRest {
+    /// Its NRMSE.
+    nrmse: f64,
+    /// Its residual.
+    residual: Vec<f64>,
+    /// The NRMSE and residual of asymmetry refitted from the jump, as the
+    /// suspects weighed it.
+    alone_nrmse: Option<f64>,
+    alone: Option<Vec<f64>>,
+}
+
+impl AsymmetryFromRest {
+    /// What the start adds to asymmetry, on the record diagnosed as `d`
+    /// (NRMSE `nrmse`).
+    fn start_gain(&self, d: &Diagnosis, nrmse: f64, scale: Scale) -> Option<Gain> {
+        Gain::of(d, nrmse, self.alone.as_deref()?, &self.residual, 1, scale)
+    }
+}
+
+impl Asymmetry {
+    /// Asymmetry added to the start's refit `from_rest` of `shifted` (the
+    /// record moved to rest at its first sample), where `suspects` weighed
+    /// it.
+    fn beside_start(shifted: &Problem, from_rest: &Outcome, suspects: &[Suspect]) -> Self {
+        let effect = EffectRef::Builtin(EffectKind::Asymmetry);
+        if shifted.par.spec.contains(effect) {
+            return Asymmetry::Absent;
+        }
+        let Some(weighed) = asymmetry_refit(suspects) else {
+            return Asymmetry::NotWeighed;
+        };
+        let starts = WeighOptions::default().starts;
+        let refit = suspects::refit(shifted, from_rest, effect, starts, &[], false).ok();
+        let fitted = refit.and_then(|(p, o)| Some((o.scores.nrmse, residual(&p, &o.x)?)));
+        let Some((nrmse, residual_from_rest)) = fitted else {
+            return Asymmetry::Absent;
+        };
+        let alone = weighed.refit.as_ref().and_then(|(p, o)| residual(p, &o.x));
+        Asymmetry::Refitted(AsymmetryFromRest {
+            nrmse,
+            residual: residual_from_rest,
+            alone_nrmse: alone.as_ref().map(|_| weighed.nrmse_with),
+            alone,
+        })
+    }
+
+    /// Whether a force part reaching `nrmse` may be kept beside the start:
+    /// where asymmetry, refitted, fits no better, and, for a `line`, where
+    /// something held it against asymmetry (as the force drift's check asks).
+    fn admits(&self, nrmse: f64, line: bool) -> bool {
+        match self {
+            Asymmetry::Absent => true,
+            Asymmetry::NotWeighed => !line,
+            Asymmetry::Refitted(a) => nrmse <= a.nrmse,
+        }
+    }
+}
+
+/// What a named start's refit takes off the force beside it ([`start`]).
+#[derive(Clone, Copy)]
+enum ForcePart {
+    /// A constant (kN).
+    Constant(f64),
+    /// A line: the load cell's zero at the first and at the last sample (kN).
+    Line([f64; 2]),
+}
+
+impl ForcePart {
+    /// What is taken off, in words.
+    fn name(self) -> &'static str {
+        match self {
+            ForcePart::Constant(_) => "a constant force",
+            ForcePart::Line(_) => "a line in the force",
+        }
+    }
+
+    /// [`ForcePart::name`] opening a sentence.
+    fn capitalised(self) -> &'static str {
+        match self {
+            ForcePart::Constant(_) => "A constant force",
+            ForcePart::Line(_) => "A line in the force",
+        }
+    }
 }
 
 /// How a named start's advice begins: [`yield_start`] replaces it.
@@ -789,7 +1009,7 @@ pub fn of_fit(
         d,
         nrmse,
         suspects,
-        named,
+        start.as_ref().filter(|_| named),
         displaced.as_ref(),
     );
     let drifts = named_drift(&drift, &displaced);
@@ -844,7 +1064,7 @@ pub fn of_ladder(discovery: &Discovery) -> Offsets {
         &on.diagnosis,
         nrmse,
         &on.suspects,
-        named,
+        start.as_ref().filter(|_| named),
         displaced.as_ref(),
     );
     let drifts = named_drift(&drift, &displaced);
