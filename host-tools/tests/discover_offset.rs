@@ -796,10 +796,11 @@ fn a_drift_from_a_start_away_from_rest_is_weighed_against_the_start() {
 
 /// A start 0.5 mm away from rest beside a load cell drifting 2% of the peak force: the force's
 /// line opens the displacement drift's check, and the line estimated with a line in the force
-/// fits better than the start's refit, which keeps no more than a constant force (a BIC change
-/// 250-800 below the start's, measured), though nothing drifts (found by review: such lines of
-/// 0.01-0.16 mm were named drifts). Held at one value with the same part of the force, the
-/// line's slope adds nothing significant, and the start stays named.
+/// fitted better than the start's refit when that kept no more than a constant force (a BIC
+/// change 250-800 below the start's, measured), though nothing drifts (found by review: such
+/// lines of 0.01-0.16 mm were named drifts). Held at one value with the same part of the force,
+/// the line's slope adds nothing significant, and the start stays named, now with the load
+/// cell's line beside it.
 #[test]
 fn a_start_beside_a_load_cells_drift_is_not_taken_for_a_displacement_drift() {
     for (path, name) in PATHS {
@@ -814,41 +815,26 @@ fn a_start_beside_a_load_cells_drift_is_not_taken_for_a_displacement_drift() {
         let start = start.expect("the record starts 0.5 mm off");
         assert!(start.significant, "{name}: {}", start.evidence);
         assert!(!drift.significant, "{name}: {}", drift.evidence);
-        if path == Path::StepWise {
-            // On a path of growing amplitude asymmetry follows the drift
-            // (refitted from rest, it reaches the record's error without
-            // the drift: 0.0275 against 0.0284 with a constant, measured):
-            // the start's refit leaves the force as measured.
-            assert!(
-                start.with_force.is_none() && start.force_line.is_none(),
-                "{name}: {}",
-                start.evidence
-            );
-            assert!(
-                start
-                    .evidence
-                    .contains("but asymmetry, refitted from rest there"),
-                "{name}: {}",
-                start.evidence
-            );
-        } else {
-            // The start's refit keeps the load cell's drift beside it, its
-            // size to a fifth (measured: +12%; the line is fitted to what the
-            // refit leaves, not refitted with it), and its option takes both
-            // off (the loop below).
-            let [a, b] = start.force_line.expect("a line in the force");
-            let p = peak(&clean.output);
-            assert!(
-                ((b - a) / p - 0.02).abs() < 0.004,
-                "{name}: {a}..{b} of {p}"
-            );
-            assert!(
-                (start.nrmse_with - control).abs() < 0.05 * control,
-                "{name}: {} against {control}",
-                start.nrmse_with
-            );
-            assert!(subtract_option(&start.evidence).contains("--subtract force="));
-        }
+        // The start's refit keeps the load cell's drift beside it, and its
+        // option takes both off (the loop below). The line is fitted to what
+        // the refit leaves, not refitted with it: measured 2.2% for 2% on the
+        // irregular path, within a fifth; 1.6% on the step-wise path, whose
+        // growing amplitude lets the refit's parameters follow part of a
+        // drift (asymmetry refitted from rest there reaches 0.0275 against
+        // the line's 0.0274), within a quarter.
+        let [a, b] = start.force_line.expect("a line in the force");
+        let p = peak(&clean.output);
+        let within = if path == Path::StepWise { 0.25 } else { 0.2 };
+        assert!(
+            ((b - a) / p - 0.02).abs() < within * 0.02,
+            "{name}: {a}..{b} of {p}"
+        );
+        assert!(
+            (start.nrmse_with - control).abs() < 0.05 * control,
+            "{name}: {} against {control}",
+            start.nrmse_with
+        );
+        assert!(subtract_option(&start.evidence).contains("--subtract force="));
         let dd = displaced.expect("a line in the force opens the check");
         println!("{name}: {}", dd.evidence);
         assert!(!dd.significant, "{name}: {}", dd.evidence);
@@ -876,8 +862,7 @@ fn the_option_a_displacement_drift_beside_a_force_offset_gives_takes_both_off() 
 
 /// The loop on a record starting 0.5 mm off beside a load cell drifting 2% of the peak force
 /// (found by review: the start's option took off a constant force, and the drift was named only
-/// on the next run): the start's option as printed takes both off. The irregular path: on the
-/// step-wise one asymmetry follows the drift (above).
+/// on the next run): the start's option as printed takes both off.
 #[test]
 fn the_option_a_start_beside_a_load_cells_drift_gives_takes_both_off() {
     let clean = record(&[], Path::Irregular(7), Noise::HIGH, 1).unwrap();
