@@ -718,10 +718,9 @@ pub fn start(
     let with_line = Gain::of(d, nrmse, &d.residual, &line.after, 3, scale);
     // The start is named where it is significant alone or beyond the
     // constant. With a named start the line is kept as above, else the
-    // constant where it adds decisively (a BIC
-    // change below -10) to the start alone; either must fit at least as well
-    // as asymmetry refitted from rest there, which explains the same
-    // lopsided residual (a start on a record with asymmetry of 4% hidden
+    // constant where it adds decisively (a BIC change below -10) to the
+    // start alone; either must fit at least as well as asymmetry refitted
+    // from rest there, which explains the same lopsided residual (a start on a record with asymmetry of 4% hidden
     // kept a line of 2.6% of the peak force, which hid the asymmetry from
     // the next run: found by review). The evidence then gives the gain of
     // all against the fit as it was. An unnamed start is reported alone: the
