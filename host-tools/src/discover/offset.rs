@@ -38,9 +38,9 @@
 //!   force alone, and a named start keeps the refit's own constant force
 //!   where that adds a BIC change below -10 to the start alone; or, where
 //!   the load cell drifts beside the start, a line in the sample number
-//!   fitted to what the refit leaves, kept where it is significant as an
-//!   offset beyond the constant (a BIC change below -10 and [`MIN_SHARE`] of
-//!   what the start and the constant leave). A constant or a line kept
+//!   fitted to what the refit leaves, kept where the force drift's rule
+//!   holds against the start alone (significant, and a BIC change below -10
+//!   beyond a constant). A constant or a line kept
 //!   beside the start must fit at least as well as asymmetry refitted from
 //!   rest there, which explains the same lopsided residual; where asymmetry
 //!   fits better the force is left as measured, and the start is named only
@@ -138,7 +138,8 @@ pub struct OffsetCheck {
     /// first and at the last sample) fitted together with its own, where it
     /// adds a BIC change below -10 ([`displacement_drift`]); for a named
     /// start, the line in the force its refit leaves, where it is significant
-    /// beyond a constant ([`start`]). The option takes both off.
+    /// against the start alone and beyond a constant ([`start`]). The option
+    /// takes both off.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub force_line: Option<[f64; 2]>,
     /// Share of the squared error that removing the offset removes.
@@ -720,9 +721,10 @@ pub fn start(
     // constant. With a named start the line is kept as above, else the
     // constant where it adds decisively (a BIC change below -10) to the
     // start alone; either must fit at least as well as asymmetry refitted
-    // from rest there, which explains the same lopsided residual (a start on a record with asymmetry of 4% hidden
-    // kept a line of 2.6% of the peak force, which hid the asymmetry from
-    // the next run: found by review). The evidence then gives the gain of
+    // from rest there, which explains the same lopsided residual (a start
+    // on a record with asymmetry of 4% hidden kept a line of 2.6% of the
+    // peak force, which hid the asymmetry from the next run: found by
+    // review). The evidence then gives the gain of
     // all against the fit as it was. An unnamed start is reported alone: the
     // force's parts are the force checks'.
     let named = alone.significant() || beyond.as_ref().is_some_and(Gain::significant);
