@@ -36,7 +36,9 @@
 //!   force offset (a model near its elastic limit turns it into a constant
 //!   z), so the start is also named where it adds significantly to a constant
 //!   force alone, and a named start keeps the refit's own constant force
-//!   where that adds a BIC change below -10 to the start alone; or, where
+//!   where the force offset's rule holds against the start alone (it is
+//!   significant, and the refit's residual at rest over its elastic start
+//!   shows at least [`START_SHARE`] of it); or, where
 //!   the load cell drifts beside the start, a line in the sample number
 //!   fitted to what the refit leaves, kept where the force drift's rule
 //!   holds against the start alone (significant, and a BIC change below -10
@@ -664,7 +666,9 @@ pub const START_FLOOR: f64 = 1e-3;
 /// rest at its first displacement; and, since a jump at the start can take up
 /// a constant force (a model near its elastic limit turns the jump into a
 /// constant z), with the refit's own constant force taken off as well, which
-/// is kept where it is the better by BIC. `None` for other drives, a first
+/// is kept where [`force`] would name it on the refit: significant against
+/// the start alone and read at rest over the refit's elastic start (or a
+/// line, weighed as [`drift`] weighs one). `None` for other drives, a first
 /// displacement below [`START_FLOOR`] of the peak or a model that cannot be
 /// simulated from there.
 pub fn start(
@@ -735,14 +739,28 @@ pub fn start(
     let line_part = with_line
         .filter(|_| named && line_weighed)
         .map(|l| (l, ForcePart::Line([-line.at(0.0), -line.at(1.0)])));
+    // A constant is weighed as the force offset's check weighs one, against
+    // the start alone: significant, and read at rest over the refit's elastic
+    // start, where a load cell's zero shows and a lopsided misfit does not
+    // (with asymmetry of 4% hidden and left out of the candidates, a
+    // constant of 9.9% of the peak force was kept beside a start at a BIC
+    // change below -10, and the next run was left a worse fit: found by
+    // review).
+    let constant_gain = Gain::of(d, nrmse, &after, &both, 1, scale);
+    let early = early_reading(&after, &shifted.exp.input);
+    let at_rest = early.is_some_and(|(e, _)| e * m > 0.0 && e.abs() >= START_SHARE * m.abs());
+    let constant_weighed = constant_gain.as_ref().is_some_and(Gain::significant);
     let constant_part = total
-        .filter(|t| named && t.delta_bic - alone.delta_bic < SIGNIFICANT_BIC)
+        .filter(|_| named && constant_weighed && at_rest)
         .map(|t| (t, ForcePart::Constant(-m)));
-    let asymmetry = if line_part.is_some() || constant_part.is_some() {
-        Asymmetry::beside_start(&shifted, &from_rest, suspects)
-    } else {
-        Asymmetry::Absent
-    };
+    // Asymmetry is refitted beside the start where a force part would be
+    // kept, or where the start is named only beyond a constant.
+    let asymmetry =
+        if line_part.is_some() || constant_part.is_some() || (named && !alone.significant()) {
+            Asymmetry::beside_start(&shifted, &from_rest, suspects)
+        } else {
+            Asymmetry::Absent
+        };
     let candidates = [line_part, constant_part];
     let admitted = candidates
         .iter()
@@ -758,16 +776,18 @@ pub fn start(
         Some((g, f)) => (*g, Some(*f)),
         None => (alone, None),
     };
-    // Where asymmetry holds what the force's part would take, the start
-    // beyond a constant means nothing: it must then be significant alone or
-    // beside asymmetry, each refitted (a record with asymmetry of 0.3 hidden
-    // starting 0.5 mm off: the start alone fits worse, the start beyond a
-    // constant was named).
-    let beside_asymmetry = match (&asymmetry, refused) {
-        (Asymmetry::Refitted(a), Some(_)) => a.start_gain(d, scale),
+    // Where no force part is kept (asymmetry holds what it would take, or
+    // it is refused on its own), the start beyond a constant means nothing:
+    // it must then be significant alone or beside asymmetry, each refitted,
+    // since its option takes the start alone off (a record with asymmetry of
+    // 0.3 hidden starting 0.5 mm off: the start alone fits worse, the start
+    // beyond a constant was named; with asymmetry left out of the
+    // candidates, the constant, not read at rest, was kept beside it).
+    let beside_asymmetry = match &asymmetry {
+        Asymmetry::Refitted(a) if force.is_none() => a.start_gain(d, scale),
         _ => None,
     };
-    let significant = if refused.is_some() {
+    let significant = if force.is_none() {
         alone.significant() || beside_asymmetry.as_ref().is_some_and(Gain::significant)
     } else {
         named
@@ -797,24 +817,26 @@ pub fn start(
             slope.as_ref().map_or(f64::NAN, |g| g.delta_bic)
         ),
     };
+    let with_asymmetry = match (&asymmetry, &beside_asymmetry) {
+        (Asymmetry::Refitted(a), Some(b)) => a.alone_nrmse.map_or(String::new(), |alone| {
+            format!(
+                " Beside asymmetry, the start takes the NRMSE from {alone:.4} to {:.4} ({:.1}% \
+                 of the squared error; delta-BIC {:+.0}).",
+                a.nrmse,
+                100.0 * b.share,
+                b.delta_bic
+            )
+        }),
+        _ => String::new(),
+    };
     let beside = match (&asymmetry, refused) {
         (Asymmetry::Refitted(a), Some((g, f))) => format!(
             " {} beside it would reach {:.4}, but asymmetry, refitted from rest there, reaches \
              {:.4}: a load cell whose zero is off looks like unequal strength in the two \
-             directions, and the force is left as measured.{}",
+             directions, and the force is left as measured.",
             f.capitalised(),
             g.nrmse_with,
             a.nrmse,
-            match (&beside_asymmetry, a.alone_nrmse) {
-                (Some(b), Some(alone)) => format!(
-                    " Beside asymmetry, the start takes the NRMSE from {alone:.4} to {:.4} \
-                     ({:.1}% of the squared error; delta-BIC {:+.0}).",
-                    a.nrmse,
-                    100.0 * b.share,
-                    b.delta_bic
-                ),
-                _ => String::new(),
-            }
         ),
         (Asymmetry::Refitted(a), None) => force.map_or(String::new(), |f| {
             format!(
@@ -833,6 +855,29 @@ pub fn start(
              in part and took up part of the line (weigh it on a model without asymmetry)."
             .into(),
         _ => String::new(),
+    };
+    // A constant refused for what the refit reads at rest, said beside
+    // whatever was said of the line.
+    let not_at_rest = if force.is_none() && named && constant_weighed && !at_rest {
+        format!(
+            " A constant force of {:+.df$} kN beside it is not taken off{}: {}",
+            -m,
+            if beside.is_empty() { "" } else { " either" },
+            match early {
+                Some((e, n)) => format!(
+                    "at rest, over the first {n} samples of the refit, the record reads \
+                     {:+.df$} kN off, less than {:.0}% of it, so the constant is a lopsided \
+                     misfit, not the load cell's zero.",
+                    -e,
+                    100.0 * START_SHARE
+                ),
+                None => "the refit does not pass through rest early enough to read the load \
+                         cell's zero."
+                    .into(),
+            }
+        )
+    } else {
+        String::new()
     };
     let verdict = if !significant {
         match &beside_asymmetry {
@@ -856,7 +901,7 @@ pub fn start(
         "The record starts at displacement {u0:+.du$} mm ({:+.1}% of its peak) and force \
          {f0:+.df$} kN; the models start at rest at zero, so their first step is a jump of \
          {u0:+.du$} mm. Refitted from rest at the first sample{taken}, the model takes {}.\
-         {beside} {verdict}",
+         {beside}{not_at_rest}{with_asymmetry} {verdict}",
         100.0 * relative,
         gain.words(nrmse)
     );
