@@ -6,6 +6,7 @@ use super::columns::ReadArgs;
 use super::fit::{given_point, load_timed, mass_of, parse_fix, Bar, Loaded};
 use super::ForcingArgs;
 use crate::data::Channel;
+use crate::discover::grown;
 use crate::discover::ladder::{unneeded, Unneeded};
 use crate::discover::lag::{self, LagCheck};
 use crate::discover::offset::{self, OffsetCheck};
@@ -188,8 +189,11 @@ pub fn initial_fit(common: &Common, params: Option<&Path>, bar: &Bar) -> Result<
             let (x, _) = given_point(&file, &problem, &common.data)?;
             run::evaluate_at(&problem, &x, "given")?
         }
-        None => run::fit(&problem, Method::Auto, &problem.par.default_start(), bar)
-            .with_context(|| common.data.display().to_string())?,
+        None => {
+            let direct = run::fit(&problem, Method::Auto, &problem.par.default_start(), bar)
+                .with_context(|| common.data.display().to_string())?;
+            grown_if_cornered(&problem, direct, bar)
+        }
     };
     Ok(Initial {
         problem,
@@ -198,6 +202,37 @@ pub fn initial_fit(common: &Common, params: Option<&Path>, bar: &Bar) -> Result<
         monotone,
         options,
     })
+}
+
+/// The fit `direct` of `problem`, or, where it left a parameter of an
+/// effect at an end of its range, the model grown from its base as the
+/// ladder grows it ([`grown`]) if that fits better, said in a note.
+fn grown_if_cornered(problem: &Problem, direct: Outcome, bar: &Bar) -> Outcome {
+    let cornered = grown::cornered(problem, &direct);
+    if cornered.is_empty() {
+        return direct;
+    }
+    bar.status(&format!(
+        "{} at the ends of their ranges: growing the model from its base",
+        cornered.join(", ")
+    ));
+    let Some(g) = grown::fit(problem).filter(|g| g.scores.nrmse < direct.scores.nrmse) else {
+        return direct;
+    };
+    bar.stage(&format!(
+        "grown from its base, {} reaches NRMSE {:.4}",
+        problem.par.spec, g.scores.nrmse
+    ));
+    eprintln!(
+        "note: fitted directly, {} stopped at NRMSE {:.4} with {} at the ends of their ranges; \
+         grown from its base as `discover` grows it (each effect added to the fit before), it \
+         reaches {:.4}, and that fit is the one diagnosed",
+        problem.par.spec,
+        direct.scores.nrmse,
+        cornered.join(", "),
+        g.scores.nrmse
+    );
+    g
 }
 
 /// What the record shows that no effect of the library models.

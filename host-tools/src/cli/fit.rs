@@ -3,6 +3,7 @@
 use super::columns::ReadArgs;
 use super::{ForcingArgs, ModelArg};
 use crate::data;
+use crate::discover::grown;
 use crate::fit::experiment::{Between, Drive, Experiment, Prediction, SimError};
 use crate::fit::input_noise::{self, Monotone};
 use crate::fit::nsga2::{BinaryCrossover, Encoding, Nsga2};
@@ -684,6 +685,15 @@ pub fn run(args: FitArgs) -> Result<()> {
         outln!("{}", outcome.identifiability.summary());
         for at in &outcome.at_bounds {
             outln!("Note: {at}.");
+        }
+        let cornered = grown::cornered(&problem, &outcome);
+        if !cornered.is_empty() {
+            outln!(
+                "Note: a fit can stall with an effect's parameters at the ends of their ranges \
+                 ({}): `hyst diagnose` and `hyst discover` then also grow the model from its base, \
+                 adding one effect at a time to the fit before, and keep the better fit.",
+                cornered.join(", ")
+            );
         }
         if let Some(chosen) = &outcome.polished_from {
             outln!(

@@ -22,11 +22,14 @@
 //!   degradation and pinching can stand in for.
 //! * [`ladder`]: the loop, adding the strongest significant effect until none
 //!   is left.
+//! * [`grown`]: a model with effects fitted by growing it from its base, as
+//!   the ladder does, where a direct fit leaves an effect in a corner.
 //! * [`synthetic`]: lab-like records with hidden effects for testing all of
 //!   it.
 
 pub mod diagnosis;
 pub mod displacement_drift;
+pub mod grown;
 pub mod ladder;
 pub mod lag;
 pub mod offset;
