@@ -49,8 +49,12 @@ fn a_stalled_fit_of_the_right_model_is_grown_and_names_nothing() {
     let suspect = &fitted["suspects"][0];
     assert_eq!(suspect["effect"], "stiffness-degradation", "{fitted}");
     assert_eq!(suspect["significant"], false, "{suspect}");
-    // Where the direct fit stopped in a corner, the note says what was done.
+    // Where the direct fit stopped in a corner, the note says what was done, and `fit`, which
+    // keeps its direct fit, says that it can stall there.
     if notes.contains("fitted directly") {
         assert!(notes.contains("grown from its base"), "{notes}");
+        let fit = ok(hyst(&["fit", &record, "--model", "bw+pinching"]));
+        let said = String::from_utf8_lossy(&fit.stdout);
+        assert!(said.contains("a fit can stall"), "{said}");
     }
 }
