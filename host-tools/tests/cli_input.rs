@@ -258,6 +258,30 @@ fn a_short_force_driven_record_fits_plain_bouc_wen() {
     assert!(v["nrmse"].as_f64().unwrap() < 1e-4, "{v}");
 }
 
+/// A negative mass or sample rate reaches the checks that name it; clap took `-5` for an option
+/// and advised `-- -5`, which would pass it as the data file (found by review).
+#[test]
+fn negative_numbers_are_refused_by_what_they_mean() {
+    let data = write("negative.csv", &column_record());
+    let e = err(hyst(&["fit", &data, "--mass", "-5", "--method", "lsq"]));
+    assert!(
+        e.contains("the mass must be a positive number of kg, got -5"),
+        "{e}"
+    );
+    let e = err(hyst(&[
+        "fit",
+        &data,
+        "--sample-rate",
+        "-3",
+        "--method",
+        "lsq",
+    ]));
+    assert!(
+        e.contains("expected a positive finite sample rate, found -3 Hz"),
+        "{e}"
+    );
+}
+
 /// A record with nothing to fit (a force that is zero throughout, a displacement that never
 /// moves), forces too large to square or scales that put a parameter beyond f64 is refused, where a fit "succeeded" with `k0` at
 /// 1e-308 or an NRMSE of NaN.

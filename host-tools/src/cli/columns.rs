@@ -129,7 +129,7 @@ pub fn force_lag((channel, samples): (Channel, i64)) -> i64 {
 pub struct ReadArgs {
     /// Sample rate in Hz: sample k is at k / rate (for records without a
     /// time column, or to replace a jittery one).
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     pub sample_rate: Option<f64>,
     /// Read this column as the displacement (header text or 1-based number),
     /// optionally in a unit that replaces the file's: `--displacement D:cm`.

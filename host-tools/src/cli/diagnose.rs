@@ -47,7 +47,7 @@ pub struct Common {
     #[arg(long, value_delimiter = ',')]
     pub candidates: Vec<String>,
     /// Mass in kg, for force-driven records (default: the `m` of the parameter file, if any).
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     pub mass: Option<f64>,
     #[command(flatten)]
     pub forcing: ForcingArgs,

@@ -45,7 +45,7 @@ pub struct FitArgs {
     #[arg(long = "fix", value_parser = parse_fix)]
     pub fix: Vec<(String, f64)>,
     /// Mass in kg, for force-driven records.
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     pub mass: Option<f64>,
     #[command(flatten)]
     pub forcing: ForcingArgs,

@@ -24,7 +24,7 @@ pub struct SensitivityArgs {
     #[arg(long)]
     pub model: Option<ModelSpec>,
     /// Mass in kg, for force-driven records (default: the `m` of the parameter file, if any).
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     pub mass: Option<f64>,
     #[command(flatten)]
     pub forcing: ForcingArgs,

@@ -45,7 +45,7 @@ pub struct SimulateArgs {
     /// fits it): the history's force column is the input and the
     /// displacement is predicted. The mass in kg; when left out, a fit
     /// file's `m` is used (such a file also selects the force drive).
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     pub mass: Option<f64>,
     #[command(flatten)]
     pub forcing: ForcingArgs,

@@ -93,19 +93,27 @@ impl ModelSpec {
         custom: 0,
     };
 
-    /// Parses a spec such as `bw+pinching+strength-degradation`.
+    /// Parses a spec such as `bw+pinching+strength-degradation`, in any
+    /// case (`BW+Pinching`: units are read in any case, and so are these).
     pub fn parse(text: &str) -> Result<Self> {
         let mut parts = text.trim().split('+').map(str::trim);
         let base = parts.next().unwrap_or_default();
-        let mut spec = match base {
+        let mut spec = match base.to_ascii_lowercase().as_str() {
             "bw" => ModelSpec::BW,
             "bwbn" => ModelSpec { effects: EffectSet::BWBN, ..ModelSpec::BW },
             "" if text.contains('+') => bail!("`{text}` has no base: expected `bw` or `bwbn` before the +effect terms, e.g. `bw{}`", text.trim()),
             "" => bail!("empty model spec: expected a base, `bw` or `bwbn`, optionally followed by +effect terms"),
+            other if other.starts_with("phm") => bail!("unknown model base `{other}` in `{text}`: expected `bw` or `bwbn`; the torsion PHM is `phm-torsion`, which `fit` and `simulate` read"),
             other => bail!("unknown model base `{other}` in `{text}`: expected `bw` or `bwbn`"),
         };
         for name in parts {
-            let Some(effect) = EffectRef::from_name(name) else {
+            if name.is_empty() {
+                bail!("`{text}` has a `+` with no effect after it: expected `+EFFECT`, e.g. `bw+pinching`");
+            }
+            let Some(effect) = EffectRef::all()
+                .into_iter()
+                .find(|e| e.name().eq_ignore_ascii_case(name))
+            else {
                 let known: Vec<_> = EffectRef::all().iter().map(|e| e.name()).collect();
                 bail!(
                     "unknown effect `{name}` in `{text}`: known effects are {}",
@@ -113,7 +121,7 @@ impl ModelSpec {
                 );
             };
             if spec.contains(effect) {
-                let thesis = base == "bwbn"
+                let thesis = base.eq_ignore_ascii_case("bwbn")
                     && EffectSet::BWBN
                         .iter()
                         .any(|k| EffectRef::Builtin(k) == effect);
@@ -295,5 +303,21 @@ mod tests {
             .to_string()
             .contains("unknown model base"));
         assert!(ModelSpec::parse("").is_err());
+        // Found by review: "unknown effect ``", and no word of the PHM.
+        let e = ModelSpec::parse("bw+").unwrap_err().to_string();
+        assert!(e.contains("a `+` with no effect after it"), "{e}");
+        let e = ModelSpec::parse("phm").unwrap_err().to_string();
+        assert!(e.contains("`phm-torsion`"), "{e}");
+    }
+
+    /// Units are read in any case; so are specs (found by review: `BW` was refused).
+    #[test]
+    fn reads_a_spec_in_any_case() {
+        assert_eq!(ModelSpec::parse("BW").unwrap(), ModelSpec::BW);
+        assert_eq!(
+            ModelSpec::parse("BW+Pinching").unwrap(),
+            ModelSpec::BW.with(EffectRef::Builtin(EffectKind::Pinching))
+        );
+        assert_eq!(ModelSpec::parse("BWBN").unwrap().to_string(), "bwbn");
     }
 }
