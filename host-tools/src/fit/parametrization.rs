@@ -226,7 +226,16 @@ impl AtBound {
 impl std::fmt::Display for AtBound {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         let (name, end, value) = (self.name, self.end, self.value);
-        if self.beyond_is_valid {
+        if self.beyond_is_valid && ["nu0", "eta0", "A0"].contains(&name) {
+            // Found by review: "the data may want one" of `nu0` on a record made with 1.
+            write!(
+                f,
+                "{}; with beta, gamma and k0 free it only rescales them, so the data cannot \
+                 place it and its end says nothing of them (--fix {name}=1 holds it where \
+                 `discover` holds it)",
+                self.stopped()
+            )
+        } else if self.beyond_is_valid {
             write!(
                 f,
                 "{}; the model allows values beyond it and the data may want one (--fix \
@@ -553,6 +562,26 @@ mod tests {
         for (a, b) in x.iter().zip(&back) {
             assert!((a - b).abs() < 1e-12 * a.abs().max(1.0));
         }
+    }
+
+    /// `nu0` at an end of its range is not a value the data want: it only rescales `beta` and
+    /// `gamma` (found by review: "the data may want one" of a record made with 1).
+    #[test]
+    fn a_redundant_initial_value_at_an_end_is_not_read_as_the_datas() {
+        let spec = ModelSpec::parse("bw+strength-degradation").unwrap();
+        let p = Parametrization::new(spec, &ramp_record(), &[]).unwrap();
+        let mut x: Vec<f64> = p.free.iter().map(|f| 0.5 * (f.lo + f.hi)).collect();
+        let index = |name| p.names().iter().position(|n| *n == name).unwrap();
+        let (nu0, n) = (index("nu0"), index("n"));
+        x[nu0] = p.free[nu0].lo;
+        x[n] = p.free[n].lo;
+        let said: Vec<String> = p.at_bounds(&x).iter().map(|a| a.to_string()).collect();
+        let of = |name: &str| said.iter().find(|s| s.starts_with(name)).unwrap();
+        assert!(
+            of("nu0").contains("only rescales") && of("nu0").contains("--fix nu0=1"),
+            "{said:?}"
+        );
+        assert!(of("n ").contains("the data may want one"), "{said:?}");
     }
 
     #[test]
