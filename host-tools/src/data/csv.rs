@@ -291,6 +291,16 @@ impl Header<'_> {
                         ));
                     }
                 }
+                // A name that says nothing (`Lead Actuator Displacment`): the
+                // unit decided, which is an assumption to say (`u`, `x`, `y`
+                // are read by their unit as a rule).
+                if name_role == NameRole::Unknown {
+                    notices.push(Notice::RoleByUnit {
+                        column: h.text.clone(),
+                        role: r,
+                        unit: u,
+                    });
+                }
                 (r, Source::Header)
             } else if let Some((t, at)) = &unit_text {
                 match name_role {

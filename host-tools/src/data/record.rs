@@ -4,6 +4,7 @@
 
 use super::baseline::Baseline;
 use super::branches::{SegmentOptions, Segmentation};
+use super::columns::Role;
 use super::cycles::{CycleError, Cycles, Threshold};
 use super::error::DataError;
 use super::units::{Quantity, Unit};
@@ -121,6 +122,16 @@ pub enum Notice {
         /// The unit assumed.
         unit: Unit,
     },
+    /// A column whose name says nothing of its role was given the role of
+    /// its unit's quantity.
+    RoleByUnit {
+        /// The column.
+        column: String,
+        /// The role it was given.
+        role: Role,
+        /// Its unit.
+        unit: Unit,
+    },
     /// A unit given by the read options replaced the unit the file states.
     OverriddenUnit {
         /// The column.
@@ -216,6 +227,11 @@ impl fmt::Display for Notice {
                 "column '{column}': unit '{file_unit}' of the file replaced by {unit} (read options)"
             ),
             Notice::UnitsByConvention { what } => write!(f, "units not stated in the file: {what}"),
+            Notice::RoleByUnit { column, role, unit } => write!(
+                f,
+                "column '{column}' is not named like a {role}: read as the {role} by its unit \
+                 ({unit}); name the column's role with --{role} if that is wrong"
+            ),
             Notice::IgnoredColumns { columns } => {
                 write!(f, "columns not read: {}", columns.join(", "))
             }

@@ -220,6 +220,21 @@ fn clt_units_line_and_force_first() {
     let s = r.series(Channel::Displacement).unwrap();
     assert_eq!(s.name, "Lead Actuator Displacment");
     assert_eq!(s.unit, Unit::Millimetre);
+    // The name is misspelt, so the unit gave the role: said (found by review: no note).
+    assert!(r.notices().contains(&Notice::RoleByUnit {
+        column: "Lead Actuator Displacment".into(),
+        role: Role::Displacement,
+        unit: Unit::Millimetre
+    }));
+    assert_eq!(
+        r.notices()
+            .iter()
+            .filter(|n| matches!(n, Notice::RoleByUnit { .. }))
+            .count(),
+        1,
+        "the force is named: {:?}",
+        r.notices()
+    );
     let raw = raw_row(&path, 2);
     assert_eq!(r.force().unwrap()[4], 0.28);
     assert_eq!(
