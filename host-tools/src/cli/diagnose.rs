@@ -223,15 +223,15 @@ fn grown_if_cornered(problem: &Problem, direct: Outcome, bar: &Bar) -> Outcome {
         "grown from its base, {} reaches NRMSE {:.4}",
         problem.par.spec, g.scores.nrmse
     ));
-    eprintln!(
-        "note: fitted directly, {} stopped at NRMSE {:.4} with {} at the ends of their ranges; \
-         grown from its base as `discover` grows it (each effect added to the fit before), it \
-         reaches {:.4}, and that fit is the one diagnosed",
+    bar.note(&format!(
+        "fitted directly, {} stopped at NRMSE {:.4} with {} at the ends of their ranges; grown \
+         from its base as `discover` grows it (each effect added to the fit before), it reaches \
+         {:.4}, and that fit is the one diagnosed",
         problem.par.spec,
         direct.scores.nrmse,
         cornered.join(", "),
         g.scores.nrmse
-    );
+    ));
     g
 }
 

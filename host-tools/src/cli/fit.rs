@@ -200,6 +200,11 @@ impl Bar {
         });
         Bar { pb, log }
     }
+    /// A note on standard error, written above a spinning bar rather than
+    /// through it.
+    pub fn note(&self, message: &str) {
+        self.pb.suspend(|| eprintln!("note: {message}"));
+    }
     /// Removes the bar.
     pub fn finish(&self) {
         self.pb.finish_and_clear();
