@@ -6,8 +6,9 @@
 //! | [`JsonLayout::FastenerConnection`] | `test.displacement`, `test.force` | from `source[0].units` (`["inches", "lbf"]`) | `cfs-fastener-peterman2014` |
 //! | [`JsonLayout::FrictionDamper`] | `data` rows `[t, displacement, friction force, ...]` | from `displacement units`, `friction force units`, `time units` | `friction-damper-brfd` |
 //! | [`JsonLayout::SimCenterBrace`] | `test.axialDef`, `test.axialForce` | in, kip (the app's axis labels; not in the file) | `steel-braces-simcenter` |
+//! | [`JsonLayout::Plain`] | `displacement`, `force` (and `time`) at the top | from `units.displacement`, `units.force`, `units.time`; else mm, kN, s, said in a note | a user's own export |
 //!
-//! All four are displacement-driven tests. Column roles and units cannot be
+//! All are displacement-driven tests. Column roles and units cannot be
 //! given in the read options for JSON (the layout fixes them); the input
 //! channel, a sample rate and rows to skip can. Errors name the place in the
 //! document as a path (`data.force[17]`), since parsed JSON has no line
@@ -31,15 +32,19 @@ pub enum JsonLayout {
     FrictionDamper,
     /// NHERI SimCenter BracedFrameModeling (`test: {axialDef, axialForce}`).
     SimCenterBrace,
+    /// The arrays at the top, as a user writes them (`{"displacement": [...],
+    /// "force": [...]}`, a `time` array and a `units` object optional).
+    Plain,
 }
 
 impl JsonLayout {
     /// Every layout, in the order they are recognised and named.
-    pub const ALL: [JsonLayout; 4] = [
+    pub const ALL: [JsonLayout; 5] = [
         JsonLayout::PeerSpd,
         JsonLayout::FastenerConnection,
         JsonLayout::SimCenterBrace,
         JsonLayout::FrictionDamper,
+        JsonLayout::Plain,
     ];
 
     /// Recognises the layout of a document by its keys: `None` when no
@@ -75,6 +80,9 @@ impl JsonLayout {
                 obj.get("data").is_some_and(Value::is_array)
                     && obj.contains_key("displacement units")
             }
+            JsonLayout::Plain => ["displacement", "force"]
+                .iter()
+                .all(|k| obj.get(*k).is_some_and(Value::is_array)),
         }
     }
 
@@ -85,6 +93,7 @@ impl JsonLayout {
             JsonLayout::FastenerConnection => "test.displacement/test.force",
             JsonLayout::SimCenterBrace => "test.axialDef/test.axialForce",
             JsonLayout::FrictionDamper => "data rows with 'displacement units'",
+            JsonLayout::Plain => "displacement/force",
         }
     }
 }
@@ -282,6 +291,57 @@ fn friction(file: &Path, obj: &Map<String, Value>) -> Result<Raw, DataError> {
     })
 }
 
+/// A user's own arrays at the top of the document, in the units of its
+/// `units` object or, where that does not name one, mm, kN and s (said).
+fn plain(file: &Path, obj: &Map<String, Value>) -> Result<Raw, DataError> {
+    let units = obj.get("units");
+    if units.is_some_and(|u| !u.is_object()) {
+        return Err(DataError::json(
+            file,
+            "units",
+            "expected an object of units by array name (`{\"displacement\": \"mm\", ...}`)",
+        ));
+    }
+    let mut notices = Vec::new();
+    let mut signal = |key: &str, q: Quantity, fallback: Unit| {
+        let values = numbers(file, obj.get(key), key)?;
+        let unit = match units.and_then(|u| u.get(key)) {
+            Some(v) => unit_at(file, Some(v), &format!("units.{key}"), q)?,
+            None => {
+                notices.push(Notice::AssumedUnit {
+                    column: key.into(),
+                    unit: fallback,
+                });
+                fallback
+            }
+        };
+        Ok::<_, DataError>((key.to_string(), unit, values))
+    };
+    let disp = signal("displacement", Quantity::Length, Unit::Millimetre)?;
+    let force = signal("force", Quantity::Force, Unit::Kilonewton)?;
+    let time = match obj.get("time") {
+        Some(_) => Some(signal("time", Quantity::Time, Unit::Second)?),
+        None => None,
+    };
+    Ok(Raw {
+        time,
+        disp,
+        force,
+        comments: Vec::new(),
+        notices,
+    })
+}
+
+/// Where value `k` of the signal read from `name` is in the document:
+/// `data[4][0]` for a column of rows (`data[*][0]`), `time[4]` for an array.
+fn place(name: &str, k: usize) -> String {
+    if name.contains("[*]") {
+        name.replacen("[*]", &format!("[{k}]"), 1)
+    } else {
+        format!("{name}[{k}]")
+    }
+}
+
 /// The values from `skip` on, in the canonical unit; a value too large for it is an error at
 /// its place in the document.
 fn series(
@@ -300,14 +360,9 @@ fn series(
             if canonical.is_finite() {
                 return Ok(canonical);
             }
-            let place = if name.contains("[*]") {
-                name.replacen("[*]", &format!("[{k}]"), 1)
-            } else {
-                format!("{name}[{k}]")
-            };
             Err(DataError::json(
                 file,
-                place,
+                place(&name, k),
                 format!(
                     "expected a number that stays finite in {}, found {v:e} {unit}",
                     unit.quantity().canonical().symbol()
@@ -348,20 +403,24 @@ pub(crate) fn parse(file: &Path, text: &str, options: &ReadOptions) -> Result<Re
         ));
     }
     let (Some(&layout), Some(obj)) = (layouts.first(), root.as_object()) else {
-        let keys = root
-            .as_object()
-            .map(|o| {
+        // Said as what it is ("found keys no object": found by review).
+        let found = match &root {
+            Value::Object(o) if o.is_empty() => "an empty object".to_string(),
+            Value::Object(o) => format!(
+                "keys {}",
                 o.keys()
                     .map(|k| format!("'{k}'"))
                     .collect::<Vec<_>>()
                     .join(", ")
-            })
-            .unwrap_or_else(|| "no object".into());
+            ),
+            Value::Array(_) => "an array at the top, not an object".to_string(),
+            other => format!("{other} at the top, not an object"),
+        };
         let [rest @ .., last] = JsonLayout::ALL.map(JsonLayout::keys);
         return Err(DataError::file(
             file,
             format!(
-                "expected a known JSON layout ({}, or {last}), found keys {keys}",
+                "expected a known JSON layout ({}, or {last}), found {found}",
                 rest.join(", ")
             ),
         ));
@@ -371,6 +430,7 @@ pub(crate) fn parse(file: &Path, text: &str, options: &ReadOptions) -> Result<Re
         JsonLayout::FastenerConnection => fastener(file, obj)?,
         JsonLayout::FrictionDamper => friction(file, obj)?,
         JsonLayout::SimCenterBrace => brace(file, obj)?,
+        JsonLayout::Plain => plain(file, obj)?,
     };
     // Arrays beside the two a layout reads (a drift or a second load cell added to an SPD
     // file) were passed over in silence.
@@ -379,6 +439,13 @@ pub(crate) fn parse(file: &Path, text: &str, options: &ReadOptions) -> Result<Re
         JsonLayout::FastenerConnection => unread_arrays(obj, "test", &["displacement", "force"]),
         JsonLayout::SimCenterBrace => unread_arrays(obj, "test", &["axialDef", "axialForce"]),
         JsonLayout::FrictionDamper => Vec::new(),
+        JsonLayout::Plain => obj
+            .iter()
+            .filter(|(k, v)| {
+                v.is_array() && !["displacement", "force", "time"].contains(&k.as_str())
+            })
+            .map(|(k, _)| k.clone())
+            .collect(),
     };
     if !unread.is_empty() {
         raw.notices.push(Notice::IgnoredColumns { columns: unread });
@@ -423,11 +490,22 @@ pub(crate) fn parse(file: &Path, text: &str, options: &ReadOptions) -> Result<Re
             ))
         }
         (None, Some((name, unit, values))) => {
+            if values.len() != n {
+                return Err(DataError::json(
+                    file,
+                    name,
+                    format!(
+                        "expected as many values as {} ({n}), found {}",
+                        raw.disp.0,
+                        values.len()
+                    ),
+                ));
+            }
             if let Some(k) = values.windows(2).skip(skip).position(|w| w[1] <= w[0]) {
                 let k = k + skip + 1;
                 return Err(DataError::json(
                     file,
-                    format!("data[{k}][0]"),
+                    place(&name, k),
                     format!(
                         "expected time to increase after {} {unit}, found {} {unit}",
                         values[k - 1],

@@ -157,9 +157,43 @@ fn simcenter_braces_by_convention() {
     }
 }
 
+/// A user's own arrays at the top (found by review: `{"displacement": [...], "force": [...]}`
+/// was refused, and the read options, which could have named them, are refused for JSON): read in
+/// the units its `units` object names, else mm, kN and s, each said; other arrays are named.
+#[test]
+fn a_plain_document_of_arrays_is_read() {
+    let plain = r#"{"displacement": [0, 1, 0], "force": [0, 2, 1], "drift": [0, 0, 0]}"#;
+    let r = read_str("plain.json", plain, Format::Json, &ReadOptions::default()).unwrap();
+    assert_eq!(r.displacement().unwrap(), [0.0, 1.0, 0.0]);
+    assert_eq!(r.force().unwrap(), [0.0, 2.0, 1.0]);
+    assert_eq!(
+        r.notices(),
+        [
+            Notice::AssumedUnit {
+                column: "displacement".into(),
+                unit: Unit::Millimetre
+            },
+            Notice::AssumedUnit {
+                column: "force".into(),
+                unit: Unit::Kilonewton
+            },
+            Notice::IgnoredColumns {
+                columns: vec!["drift".into()]
+            },
+        ]
+    );
+    let si = r#"{"time": [0, 0.5, 1], "displacement": [0, 0.001, 0], "force": [0, 2000, 1000],
+        "units": {"displacement": "m", "force": "N", "time": "s"}}"#;
+    let r = read_str("si.json", si, Format::Json, &ReadOptions::default()).unwrap();
+    assert_eq!(r.displacement().unwrap(), [0.0, 1.0, 0.0]);
+    assert_eq!(r.force().unwrap(), [0.0, 2.0, 1.0]);
+    assert_eq!(r.time().unwrap(), [0.0, 0.5, 1.0]);
+    assert!(r.notices().is_empty(), "{:?}", r.notices());
+}
+
 #[test]
 fn json_errors_name_the_place() {
-    let cases: [(&str, &str); 9] = [
+    let cases: [(&str, &str); 14] = [
         (
             r#"{"data": {"disp": [1, 2], "force": [1, "x"]}}"#,
             r#"t.json: at data.force[1]: expected a finite number, found "x""#,
@@ -175,7 +209,30 @@ fn json_errors_name_the_place() {
         (
             r#"{"rows": []}"#,
             "t.json: expected a known JSON layout (data.disp/data.force, test.displacement/test.force, \
-             test.axialDef/test.axialForce, or data rows with 'displacement units'), found keys 'rows'",
+             test.axialDef/test.axialForce, data rows with 'displacement units', or \
+             displacement/force), found keys 'rows'",
+        ),
+        (
+            "[1, 2]",
+            "t.json: expected a known JSON layout (data.disp/data.force, test.displacement/test.force, \
+             test.axialDef/test.axialForce, data rows with 'displacement units', or \
+             displacement/force), found an array at the top, not an object",
+        ),
+        (
+            r#"{"displacement": [0, 1, 2], "force": [0, 1, 2], "time": [0, 1]}"#,
+            "t.json: at time: expected as many values as displacement (3), found 2",
+        ),
+        (
+            r#"{"displacement": [0, 1, 2], "force": [0, 1, 2], "time": [0, 1, 1]}"#,
+            "t.json: at time[2]: expected time to increase after 1 s, found 1 s",
+        ),
+        (
+            r#"{"displacement": [0, 1], "force": [0, 1], "units": {"force": "mm"}}"#,
+            "t.json: at units.force: expected a force unit (N, kN, MN, kip, lbf), found 'mm'",
+        ),
+        (
+            r#"{"displacement": [0, 1], "force": [0, 1], "units": "SI"}"#,
+            "t.json: at units: expected an object of units by array name (`{\"displacement\": \"mm\", ...}`)",
         ),
         (
             // Found by review: the second layout was passed over in silence.
