@@ -137,15 +137,18 @@ fn text_of(obj: &Map<String, Value>, key: &str) -> Option<String> {
     obj.get(key).and_then(Value::as_str).map(str::to_string)
 }
 
-/// The arrays in the object at `key` other than the layout's `read` ones, as
-/// paths (`data.drift`).
-fn unread_arrays(obj: &Map<String, Value>, key: &str, read: &[&str]) -> Vec<String> {
-    obj.get(key)
-        .and_then(Value::as_object)
+/// The arrays in the object at `key` (the document itself for `None`) other
+/// than the layout's `read` ones, as paths (`data.drift`, `drift`).
+fn unread_arrays(obj: &Map<String, Value>, key: Option<&str>, read: &[&str]) -> Vec<String> {
+    let within = match key {
+        Some(key) => obj.get(key).and_then(Value::as_object),
+        None => Some(obj),
+    };
+    within
         .into_iter()
         .flatten()
         .filter(|(k, v)| v.is_array() && !read.contains(&k.as_str()))
-        .map(|(k, _)| format!("{key}.{k}"))
+        .map(|(k, _)| key.map_or_else(|| k.clone(), |key| format!("{key}.{k}")))
         .collect()
 }
 
@@ -435,17 +438,13 @@ pub(crate) fn parse(file: &Path, text: &str, options: &ReadOptions) -> Result<Re
     // Arrays beside the two a layout reads (a drift or a second load cell added to an SPD
     // file) were passed over in silence.
     let unread: Vec<String> = match layout {
-        JsonLayout::PeerSpd => unread_arrays(obj, "data", &["disp", "force"]),
-        JsonLayout::FastenerConnection => unread_arrays(obj, "test", &["displacement", "force"]),
-        JsonLayout::SimCenterBrace => unread_arrays(obj, "test", &["axialDef", "axialForce"]),
+        JsonLayout::PeerSpd => unread_arrays(obj, Some("data"), &["disp", "force"]),
+        JsonLayout::FastenerConnection => {
+            unread_arrays(obj, Some("test"), &["displacement", "force"])
+        }
+        JsonLayout::SimCenterBrace => unread_arrays(obj, Some("test"), &["axialDef", "axialForce"]),
         JsonLayout::FrictionDamper => Vec::new(),
-        JsonLayout::Plain => obj
-            .iter()
-            .filter(|(k, v)| {
-                v.is_array() && !["displacement", "force", "time"].contains(&k.as_str())
-            })
-            .map(|(k, _)| k.clone())
-            .collect(),
+        JsonLayout::Plain => unread_arrays(obj, None, &["displacement", "force", "time"]),
     };
     if !unread.is_empty() {
         raw.notices.push(Notice::IgnoredColumns { columns: unread });
