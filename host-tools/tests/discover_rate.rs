@@ -1,6 +1,6 @@
 //! Rate dependence, the effect the library does not model: the diagnosis must
-//! name it on a record that has it, and stay silent where it is absent or
-//! where the test cannot tell it from a rate-independent misfit.
+//! name it on a record that has it, with its coefficient, and stay silent
+//! where it is absent or an effect of the library explains the record better.
 //!
 //! Records: the synthetic base of `hyst::discover::synthetic` along its
 //! earthquake-like path (sampled every 0.02 s, so the speed of loading varies
@@ -10,7 +10,7 @@
 
 use hyst::discover::rate;
 use hyst::discover::synthetic::{path, record, Noise, Path, BASE};
-use hyst::discover::Diagnosis;
+use hyst::discover::{discover, weigh, Diagnosis, WeighOptions};
 use hyst::fit::experiment::{Drive, Experiment};
 use hyst::fit::problem::Problem;
 use hyst::fit::run::{self, Method, Quiet};
@@ -59,11 +59,13 @@ fn record_with_dashpot(which: Path, c: f64, seed: u64) -> (Experiment, Vec<f64>)
     (exp, t)
 }
 
+/// The check on `bw` fitted to `exp`, its candidates weighed.
 fn check(exp: Experiment, t: &[f64]) -> rate::RateCheck {
     let problem = Problem::new(ModelSpec::BW, exp, &[]).unwrap();
     let outcome = run::fit(&problem, Method::Auto, &problem.par.default_start(), &Quiet).unwrap();
     let d = Diagnosis::new(&problem, &outcome).unwrap();
-    rate::check(&d, t, outcome.scores.nrmse).expect("a time base and varying speed")
+    let suspects = weigh(&problem, &outcome, &d, &WeighOptions::default());
+    rate::of_fit(&problem, &outcome, &d, &suspects, t).expect("a time base")
 }
 
 #[test]
@@ -75,10 +77,8 @@ fn a_dashpot_is_named_and_its_coefficient_found() {
         let (exp, t) = record_with_dashpot(Path::Irregular(seed), c, seed);
         let r = check(exp, &t);
         assert!(r.significant, "seed {seed}: {}", r.evidence);
-        // Fitted to the residual of the rate-independent fit, which has
-        // absorbed part of the dashpot into a wider loop: a lower bound.
         assert!(
-            r.viscous > 0.0 && r.viscous <= 1.1 * c,
+            (r.viscous - c).abs() < 0.2 * c,
             "seed {seed}: c = {} against {c}: {}",
             r.viscous,
             r.evidence
@@ -97,13 +97,17 @@ fn nothing_is_named_without_a_dashpot() {
 
 #[test]
 fn a_library_effect_is_not_mistaken_for_rate_dependence() {
-    // Pinching and strength degradation hidden, no dashpot: the misfit of
-    // plain Bouc-Wen is large, but it does not grow with speed.
-    for (hidden, seed) in [
-        (EffectKind::Pinching, 4),
-        (EffectKind::StrengthDegradation, 5),
+    // Pinching, strength and stiffness degradation hidden, no dashpot: the
+    // misfit of plain Bouc-Wen is large, but an effect refitted explains it
+    // better than a dashpot, on either path.
+    for (hidden, which, seed) in [
+        (EffectKind::Pinching, Path::Irregular(4), 4),
+        (EffectKind::StrengthDegradation, Path::Irregular(5), 5),
+        (EffectKind::StiffnessDegradation, Path::Irregular(7), 7),
+        (EffectKind::Pinching, Path::StepWise, 8),
+        (EffectKind::StrengthDegradation, Path::StepWise, 9),
     ] {
-        let exp = record(&[hidden], Path::Irregular(seed), Noise::HIGH, seed).unwrap();
+        let exp = record(&[hidden], which, Noise::HIGH, seed).unwrap();
         let t: Vec<f64> = (0..exp.input.len()).map(|i| i as f64 * DT).collect();
         let r = check(exp, &t);
         assert!(!r.significant, "{}: {}", hidden.name(), r.evidence);
@@ -111,12 +115,48 @@ fn a_library_effect_is_not_mistaken_for_rate_dependence() {
 }
 
 #[test]
-fn a_test_at_constant_period_cannot_show_it() {
-    // Triangular cycles at a constant period: the speed is sgn(v) times a
-    // multiple of the amplitude, which a rate-independent misfit can mimic,
-    // so even a real dashpot is not named.
+fn a_test_at_constant_period_shows_it_at_the_reversals() {
     let (exp, t) = record_with_dashpot(Path::StepWise, 0.1, 6);
     let r = check(exp, &t);
-    assert!(!r.significant, "{}", r.evidence);
-    assert!(r.share < 0.01, "{}", r.evidence);
+    assert!(r.significant, "{}", r.evidence);
+}
+
+/// Along a discovery the dashpot is weighed on the first model, before an
+/// effect could stand in for it, and on the final one.
+#[test]
+fn a_discovery_names_the_dashpot_beside_the_effects_it_adds() {
+    let c = 0.1;
+    for (which, seed) in [(Path::StepWise, 10), (Path::Irregular(11), 11)] {
+        let (exp, t) = record_with_dashpot(which, c, seed);
+        let problem = Problem::new(ModelSpec::BW, exp, &[]).unwrap();
+        let outcome =
+            run::fit(&problem, Method::Auto, &problem.par.default_start(), &Quiet).unwrap();
+        let discovery = discover(problem, outcome, &WeighOptions::default(), |_| {}).unwrap();
+        let check = rate::of_ladder(&discovery, &t).expect("a time base");
+        let ladder: Vec<String> = discovery.steps.iter().map(|s| s.spec.to_string()).collect();
+        assert!(check.significant, "{ladder:?}: {}", check.evidence);
+        // On the step-wise path the ladder takes pinching for the dashpot
+        // (bw+pinching reaches 0.0355, bw with the dashpot alone 0.0298): the
+        // evidence says so.
+        if which == Path::StepWise {
+            assert_eq!(ladder, ["bw", "bw+pinching"]);
+            assert!(
+                check
+                    .evidence
+                    .contains("the effects the loop added (pinching) may stand in for the dashpot"),
+                "{}",
+                check.evidence
+            );
+        }
+        // The refitted loop takes up part of the dashpot: on the irregular
+        // path of seed 11 the best fit of `bw` with a dashpot is at c = 0.074
+        // (refits at c from 0.05 to 0.13 measured: NRMSE 0.03907 at 0.07 and
+        // 0.08, 0.03942 at the true 0.1), at 0.094 and 0.092 for seeds 1 and 2.
+        assert!(
+            check.viscous > 0.5 * c && check.viscous < 1.2 * c,
+            "c = {} against {c}: {}",
+            check.viscous,
+            check.evidence
+        );
+    }
 }

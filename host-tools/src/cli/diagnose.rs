@@ -238,8 +238,8 @@ fn grown_if_cornered(problem: &Problem, direct: Outcome, bar: &Bar) -> Outcome {
 /// What the record shows that no effect of the library models.
 #[derive(Clone, Debug, Default)]
 pub struct Beyond {
-    /// Rate dependence ([`rate::check`]): displacement-driven records with
-    /// sample times.
+    /// Rate dependence ([`rate::of_fit`], [`rate::of_ladder`]):
+    /// displacement-driven records with sample times.
     pub rate: Option<RateCheck>,
     /// Slip or a gap ([`slip::check`]): displacement-driven records.
     pub slip: Option<SlipCheck>,
@@ -266,25 +266,20 @@ pub struct Beyond {
 }
 
 impl Beyond {
-    /// The checks on the fit `outcome` of `problem`, lined up as `d`, with
-    /// what the loader did to a noisy displacement; the zero offsets are the
-    /// caller's ([`offset::of_fit`], [`offset::of_ladder`]), which know the
-    /// fits to weigh them on.
+    /// The checks on the fit of `problem` lined up as `d`, with what the
+    /// loader did to a noisy displacement; the zero offsets, the dashpot and
+    /// the lag are the caller's ([`offset::of_fit`], [`rate::of_fit`],
+    /// [`lag::of_fit`] and their ladders'), which know the fits to weigh them
+    /// on.
     pub fn check(
         problem: &Problem,
-        outcome: &Outcome,
         d: &Diagnosis,
-        time: Option<&[f64]>,
         monotone: Option<Monotone>,
         negated: &[Channel],
     ) -> Self {
         let displacement = problem.exp.drive == Drive::Displacement;
-        let rate = match time {
-            Some(t) if displacement => rate::check(d, t, outcome.scores.nrmse),
-            _ => None,
-        };
         Beyond {
-            rate,
+            rate: None,
             slip: slip::check(d, &problem.exp.drive),
             force_offset: None,
             start_offset: None,
@@ -313,25 +308,34 @@ impl Beyond {
     }
 
     /// Takes the check for a lag between the channels ([`lag::of_fit`],
-    /// [`lag::of_ladder`]), after the offsets ([`Beyond::set_offsets`]): a
-    /// named offset or drift that fits better is taken off first
-    /// ([`lag::yield_to_offset`]). A named lag leaves a residual that follows the
+    /// [`lag::of_ladder`]), after the offsets ([`Beyond::set_offsets`]) and
+    /// the dashpot ([`Beyond::rate`]): a named offset, drift or dashpot that
+    /// fits better is taken off first ([`lag::yield_to`]). A named lag leaves a residual that follows the
     /// speed of loading as well (a force one sample late was flagged as rate
     /// dependence: found by review), which the rate check's evidence then
     /// says.
     pub fn set_lag(&mut self, mut lag: Option<LagCheck>) {
-        let offsets = [
-            ("force offset", &self.force_offset),
-            ("start away from rest", &self.start_offset),
-            ("force drift", &self.force_drift),
-            ("displacement drift", &self.displacement_drift),
+        let named =
+            |o: &Option<OffsetCheck>| o.as_ref().filter(|o| o.significant).map(|o| o.nrmse_with);
+        let others = [
+            ("force offset", named(&self.force_offset)),
+            ("start away from rest", named(&self.start_offset)),
+            ("force drift", named(&self.force_drift)),
+            ("displacement drift", named(&self.displacement_drift)),
+            (
+                "dashpot",
+                self.rate
+                    .as_ref()
+                    .filter(|r| r.significant)
+                    .map(|r| r.nrmse_with),
+            ),
         ];
-        let best = offsets
+        let best = others
             .into_iter()
-            .filter_map(|(name, o)| o.as_ref().filter(|o| o.significant).map(|o| (name, o)))
-            .min_by(|a, b| a.1.nrmse_with.total_cmp(&b.1.nrmse_with));
+            .filter_map(|(name, o)| o.map(|o| (name, o)))
+            .min_by(|a, b| a.1.total_cmp(&b.1));
         if let (Some(l), Some((name, o))) = (lag.as_mut(), best) {
-            lag::yield_to_offset(l, name, o);
+            lag::yield_to(l, name, Some(o));
         }
         if let (Some(l), Some(r)) = (&lag, &mut self.rate) {
             if l.significant && r.significant {
@@ -576,18 +580,15 @@ pub fn run(args: DiagnoseArgs) -> Result<()> {
         bar.status("taking out the model's effects one at a time");
         unneeded(&problem, &outcome, &d, &problem.par.spec.effects(), &[])
     };
-    let mut beyond = Beyond::check(
-        &problem,
-        &outcome,
-        &d,
-        time.as_deref(),
-        monotone,
-        &args.common.read.negate,
-    );
+    let mut beyond = Beyond::check(&problem, &d, monotone, &args.common.read.negate);
     beyond.set_offsets(offset::of_fit(&problem, &outcome, &d, &suspects));
-    // A realignment is refitted, so, as for the removals above, the fit it
-    // is weighed against must be fitted too.
+    // A dashpot or a realignment is refitted, so, as for the removals above,
+    // the fit it is weighed against must be fitted too.
     if args.params.is_none() {
+        if let Some(t) = &time {
+            bar.status("refitting with a dashpot");
+            beyond.rate = rate::of_fit(&problem, &outcome, &d, &suspects, t);
+        }
         bar.status("realigning the channels");
         beyond.set_lag(lag::of_fit(&problem, &outcome, &d, &suspects));
     }

@@ -7,7 +7,7 @@ use super::diagnose::{
 };
 use super::fit::Bar;
 use crate::discover::{discover, page, Rung};
-use crate::discover::{lag, offset, slip};
+use crate::discover::{lag, offset, rate, slip};
 use crate::fit::run::Progress;
 use anyhow::{Context, Result};
 use clap::Args;
@@ -55,14 +55,16 @@ pub fn run(args: DiscoverArgs) -> Result<()> {
     let last = discovery.last();
     let mut beyond = Beyond::check(
         &last.problem,
-        &last.outcome,
         &last.diagnosis,
-        time.as_deref(),
         monotone,
         &args.common.read.negate,
     );
     beyond.slip = slip::of_ladder(&discovery, beyond.slip);
     beyond.set_offsets(offset::of_ladder(&discovery));
+    if let Some(t) = &time {
+        bar.status("refitting with a dashpot");
+        beyond.rate = rate::of_ladder(&discovery, t);
+    }
     bar.status("realigning the channels");
     beyond.set_lag(lag::of_ladder(&discovery));
     bar.finish();

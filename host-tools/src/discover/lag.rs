@@ -38,7 +38,7 @@
 
 use super::diagnosis::Diagnosis;
 use super::ladder::{Discovery, Step};
-use super::offset::{refit_residual, scale_of, Gain, OffsetCheck};
+use super::offset::{refit_residual, scale_of, Gain};
 use super::suspects::Suspect;
 use crate::fit::experiment::Drive;
 use crate::fit::objectives::{Target, ENVELOPE_FLOOR};
@@ -193,7 +193,7 @@ fn in_step_shift(force: &[f64], residual: &[f64]) -> Option<i64> {
 
 /// The candidate effect that fitted best, refitted on the model the suspects
 /// were weighed on.
-fn best_effect(suspects: &[Suspect]) -> Option<(String, f64)> {
+pub(super) fn best_effect(suspects: &[Suspect]) -> Option<(String, f64)> {
     suspects
         .iter()
         .filter(|s| s.nrmse_with.is_finite())
@@ -309,28 +309,30 @@ fn weigh(
     })
 }
 
-/// How a named lag's advice begins: [`yield_to_offset`] replaces it.
+/// How a named lag's advice begins: [`yield_to`] replaces it.
 const LAG_REMEDY: &str = "Channels out of step make";
 
-/// Unnames the lag `lag` for the named zero offset or drift `offset`
-/// (called `name`) where that fits better: both are numbers that are not the
-/// model's, and the one that explains more is taken off first (a zero
-/// drifting from -3 mm back to 0 beside a force offset, on `bw+pinching`:
-/// the drift took the NRMSE to 0.0173, a force one sample late to 0.0965,
-/// and both were named; with the drift taken off, no lag was left: found by
-/// review).
-pub fn yield_to_offset(lag: &mut LagCheck, name: &str, offset: &OffsetCheck) {
-    if !(lag.significant && offset.significant && offset.nrmse_with < lag.nrmse_with) {
+/// Unnames the lag `lag` for another number that is not the model's, a zero
+/// offset, a drift or a dashpot (called `name`), named at an NRMSE of
+/// `other` (`None`: not named), where that fits better: the one that
+/// explains more is taken off first (a zero drifting from -3 mm back to 0
+/// beside a force offset, on `bw+pinching`: the drift took the NRMSE to
+/// 0.0173, a force one sample late to 0.0965, and both were named; with the
+/// drift taken off, no lag was left: found by review; a dashpot makes the
+/// force lead at the reversals, and a sine record's was named a force a
+/// sample early beside it, 0.0284 against the dashpot's 0.0234).
+pub fn yield_to(lag: &mut LagCheck, name: &str, other: Option<f64>) {
+    let Some(other) = other.filter(|o| lag.significant && *o < lag.nrmse_with) else {
         return;
-    }
+    };
     if let Some(at) = lag.evidence.find(LAG_REMEDY) {
         lag.evidence.truncate(at);
     }
     lag.evidence.push_str(&format!(
         "Not named: the {name} (above), whose numbers are not the model's either, fits better \
-         ({:.4} against {:.4}): take it off and run again, and a lag that is there is named \
-         then.",
-        offset.nrmse_with, lag.nrmse_with
+         ({other:.4} against {:.4}): take it off the record and run again, and a lag that is \
+         there is named then.",
+        lag.nrmse_with
     ));
     lag.significant = false;
 }
@@ -381,7 +383,7 @@ pub fn of_ladder(discovery: &Discovery) -> Option<LagCheck> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::discover::offset::Offset;
+    use crate::discover::offset::{Offset, OffsetCheck};
     use crate::fit::experiment::Experiment;
     use crate::model::ModelSpec;
 
@@ -445,7 +447,12 @@ mod tests {
             evidence: String::new(),
         };
         let mut yielded = lag.clone();
-        yield_to_offset(&mut yielded, "displacement drift", &drift(0.0173, true));
+        let named = |o: &OffsetCheck| o.significant.then_some(o.nrmse_with);
+        yield_to(
+            &mut yielded,
+            "displacement drift",
+            named(&drift(0.0173, true)),
+        );
         assert!(!yielded.significant);
         assert!(!yielded.evidence.contains("--lag"), "{}", yielded.evidence);
         assert!(
@@ -459,7 +466,7 @@ mod tests {
         // An offset that fits worse, or is not named, leaves the lag as it was.
         for offset in [drift(0.0990, true), drift(0.0173, false)] {
             let mut kept = lag.clone();
-            yield_to_offset(&mut kept, "displacement drift", &offset);
+            yield_to(&mut kept, "displacement drift", named(&offset));
             assert_eq!(kept, lag);
         }
     }

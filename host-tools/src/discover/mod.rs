@@ -8,9 +8,9 @@
 //! * [`signature`]: what each missing effect leaves in the residual.
 //! * [`suspects`]: every candidate effect added and refitted, ranked by
 //!   delta-BIC, significant or not, with a sentence of evidence.
-//! * [`rate`]: rate dependence, which no effect of the library models, looked
-//!   for in the residual so that the diagnosis names it rather than blaming
-//!   an effect it has.
+//! * [`rate`]: rate dependence, which no effect of the library models: the
+//!   model refitted with a dashpot beside it, so that the diagnosis names it
+//!   rather than blaming an effect it has.
 //! * [`slip`]: slip or a gap, a plateau of zero force on reversal, which no
 //!   effect of the library models either and which pinching only resembles.
 //! * [`offset`]: instruments that do not read zero at zero (a force offset, a
