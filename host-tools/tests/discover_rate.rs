@@ -8,6 +8,10 @@
 //! samples at a constant period, so the speed is `sgn(v)` times a multiple of
 //! the amplitude), with a dashpot `c v` added to the force or not, and noise.
 
+#[path = "support/cli.rs"]
+mod cli;
+
+use cli::{hyst, ok, write};
 use hyst::discover::rate;
 use hyst::discover::synthetic::{path, record, Noise, Path, BASE};
 use hyst::discover::{discover, weigh, Diagnosis, WeighOptions};
@@ -159,4 +163,104 @@ fn a_discovery_names_the_dashpot_beside_the_effects_it_adds() {
             check.evidence
         );
     }
+}
+
+/// The loop the diagnosis asks for: a dashpot named with its coefficient, taken off with
+/// `--dashpot` as the record is read, and the effect the ladder had taken for it gone; the
+/// option refused where it cannot mean anything, and recorded in a fit file.
+#[test]
+fn the_dashpot_named_is_taken_off_and_the_effect_it_stood_for_goes() {
+    let (exp, t) = record_with_dashpot(Path::StepWise, 0.1, 10);
+    let rows: String = (0..t.len())
+        .map(|i| format!("{},{},{}\n", t[i], exp.input[i], exp.output[i]))
+        .collect();
+    let path = write(
+        "damped.csv",
+        &format!("time (s),displacement (mm),force (kN)\n{rows}"),
+    );
+    let out = String::from_utf8(ok(hyst(&["discover", &path, "--model", "bw"])).stdout).unwrap();
+    assert!(out.contains("bw+pinching"), "{out}");
+    let option = out
+        .split("`--dashpot ")
+        .nth(1)
+        .and_then(|rest| rest.split('`').next())
+        .unwrap_or_else(|| panic!("no --dashpot in {out}"));
+    let c: f64 = option.parse().unwrap();
+    assert!((c - 0.1).abs() < 0.2 * 0.1, "{c}");
+    let again = ok(hyst(&[
+        "discover",
+        &path,
+        "--model",
+        "bw",
+        "--dashpot",
+        option,
+    ]));
+    let note = cli::stderr(&again);
+    let out = String::from_utf8(again.stdout).unwrap();
+    assert!(
+        note.contains("column 'force (kN)': a dashpot's force, ")
+            && note.contains(" kN s/mm times the speed of 'displacement (mm)'"),
+        "{note}"
+    );
+    assert!(out.contains("nothing added"), "{out}");
+    assert!(!out.contains("bw+pinching"), "{out}");
+    let rate = out.split("rate dependence").nth(1).unwrap_or_default();
+    assert!(rate.trim_start().starts_with("not significant"), "{out}");
+
+    for (args, expected) in [
+        (
+            vec!["--dashpot", "-0.1"],
+            "expected a positive viscous coefficient for the dashpot",
+        ),
+        (vec!["--dashpot", "abc"], "invalid value 'abc'"),
+    ] {
+        let e = cli::err(hyst(
+            &[&["fit", &path, "--model", "bw"], &args[..]].concat(),
+        ));
+        assert!(e.contains(expected), "{args:?}: {e}");
+    }
+    let untimed: String = (0..t.len())
+        .map(|i| format!("{},{}\n", exp.input[i], exp.output[i]))
+        .collect();
+    let untimed = write(
+        "untimed.csv",
+        &format!("displacement (mm),force (kN)\n{untimed}"),
+    );
+    let e = cli::err(hyst(&[
+        "fit",
+        &untimed,
+        "--model",
+        "bw",
+        "--dashpot",
+        "0.1",
+    ]));
+    assert!(
+        e.contains("cannot take a dashpot off the force: the record has no sample times"),
+        "{e}"
+    );
+
+    let file = cli::tmp("damped-fit.json");
+    let file = file.to_str().unwrap();
+    ok(hyst(&[
+        "fit",
+        &path,
+        "--model",
+        "bw",
+        "--method",
+        "lsq",
+        "--dashpot",
+        option,
+        "--out",
+        file,
+    ]));
+    let fit: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(file).unwrap()).unwrap();
+    assert_eq!(fit["fit"]["dashpot"].as_f64(), Some(c), "{fit}");
+    let note = cli::stderr(&ok(hyst(&["simulate", &path, "--params", file])));
+    assert!(
+        note.contains(&format!(
+            "read with `--dashpot {c}`, which is not given here"
+        )),
+        "{note}"
+    );
 }

@@ -174,11 +174,21 @@ pub struct ReadArgs {
     /// them, e.g. `--lag force=1`.
     #[arg(long, value_name = "CHANNEL=SAMPLES", value_parser = parse_lag)]
     pub lag: Option<(Channel, i64)>,
+    /// Take a dashpot's force off the force: C times the speed of the
+    /// displacement (central differences over two samples each side), C in
+    /// kN s/mm (kN m s/deg for a torsion record). A viscous force beside the
+    /// member, which no model here has, as `hyst diagnose` names one
+    /// (`rate dependence`, with its C), e.g. `--dashpot 4.7653e-1`: run
+    /// again with it to see which effects the record needs beside it. Needs
+    /// the record's sample times (a time column or `--sample-rate`); applied
+    /// after `--negate`, `--subtract` and `--lag`.
+    #[arg(long, value_name = "C", allow_negative_numbers = true)]
+    pub dashpot: Option<f64>,
 }
 
 impl ReadArgs {
     /// The read options the fit in `file` recorded (`fit.subtract`,
-    /// `fit.negate`, `fit.lag`) that these arguments do not repeat, as notes: a verb that
+    /// `fit.negate`, `fit.lag`, `fit.dashpot`) that these arguments do not repeat, as notes: a verb that
     /// compares a fit with its record would otherwise compare it with a record
     /// read differently, without a word (found by review: a fit of NRMSE
     /// 1.5e-10 read back at 0.113 with a force offset named).
@@ -272,6 +282,23 @@ impl ReadArgs {
             )),
             None => {}
         }
+        match (fit.get("dashpot"), self.dashpot) {
+            (None, _) => {}
+            (Some(there), here) => match (there.as_f64(), here) {
+                (None, _) => notes.push(format!(
+                    "{}: `fit.dashpot` is {there}, not a number: not compared with this \
+                     command's --dashpot",
+                    file.path.display()
+                )),
+                (Some(c), Some(h)) if c == h => {}
+                (Some(c), Some(h)) => notes.push(format!(
+                    "the fit in {} was made on a record read with `--dashpot {c}`; this command \
+                     gives `--dashpot {h}` instead",
+                    file.path.display()
+                )),
+                (Some(c), None) => missing.push(format!("--dashpot {c}")),
+            },
+        }
         notes.extend(missing.into_iter().map(|option| {
             format!(
                 "the fit in {} was made on a record read with `{option}`, which is not given here: \
@@ -301,6 +328,9 @@ impl ReadArgs {
             if fit.get("lag").is_none() {
                 extra.push(format!("--lag {}={v}", c.name()));
             }
+        }
+        if let Some(c) = self.dashpot.filter(|_| fit.get("dashpot").is_none()) {
+            extra.push(format!("--dashpot {c}"));
         }
         notes.extend(extra.into_iter().map(|option| {
             format!(
@@ -334,7 +364,7 @@ impl ReadArgs {
     /// file can be given the same (found by review): `negate`, the channels
     /// flipped; `subtract`, for each channel what is taken off it, a constant
     /// as a number, a line as `[first, last]`; `lag`, the force's lag,
-    /// whichever channel was named.
+    /// whichever channel was named; `dashpot`, its coefficient.
     pub fn record_into(&self, fit: &mut Value) {
         if !self.negate.is_empty() {
             let names: Vec<String> = self.negate.iter().map(|c| c.to_string()).collect();
@@ -349,6 +379,9 @@ impl ReadArgs {
         }
         if let Some(samples) = self.lag.map(force_lag).filter(|s| *s != 0) {
             fit["lag"] = json!({ "force": samples });
+        }
+        if let Some(c) = self.dashpot {
+            fit["dashpot"] = json!(c);
         }
     }
 
@@ -381,6 +414,9 @@ impl ReadArgs {
         }
         if let Some((channel, samples)) = self.lag {
             opts = opts.lag(channel, samples);
+        }
+        if let Some(c) = self.dashpot {
+            opts = opts.dashpot(c);
         }
         opts
     }

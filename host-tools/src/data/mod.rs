@@ -78,6 +78,7 @@ pub mod json_place;
 mod read;
 mod record;
 pub mod residuals;
+pub mod speed;
 pub mod unique_keys;
 pub mod units;
 pub mod write;

@@ -84,6 +84,10 @@ pub struct ReadOptions {
     /// A channel read this many samples late against the other, realigned
     /// once read ([`Record::realign`]).
     pub lag: Option<(Channel, i64)>,
+    /// A dashpot's coefficient: its force, this times the speed of the
+    /// displacement, is taken off the force once the record is read and
+    /// realigned ([`Record::take_dashpot`]).
+    pub dashpot: Option<f64>,
 }
 
 impl ReadOptions {
@@ -127,6 +131,12 @@ impl ReadOptions {
     /// Flips the sign of `channel` once it is read.
     pub fn negate(mut self, channel: Channel) -> Self {
         self.negate.push(channel);
+        self
+    }
+
+    /// Takes a dashpot of coefficient `c` off the force once it is read.
+    pub fn dashpot(mut self, c: f64) -> Self {
+        self.dashpot = Some(c);
         self
     }
 
@@ -273,6 +283,9 @@ pub fn read_str(
     }
     if let Some((channel, samples)) = options.lag {
         record.realign(channel, samples)?;
+    }
+    if let Some(c) = options.dashpot {
+        record.take_dashpot(c)?;
     }
     Ok(record)
 }

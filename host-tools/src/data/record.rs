@@ -203,6 +203,18 @@ pub enum Notice {
         /// How many samples late.
         samples: usize,
     },
+    /// A dashpot's force, a coefficient times the speed of the displacement,
+    /// was taken off every sample of the force (read options).
+    Dashpot {
+        /// The force's column.
+        column: String,
+        /// The displacement's column.
+        displacement: String,
+        /// The coefficient, in `unit`.
+        coefficient: f64,
+        /// Its unit: the force's canonical unit per (displacement's per s).
+        unit: String,
+    },
     /// The time base was built from a sample rate: sample `k` is at `k / rate`.
     TimeFromSampleRate {
         /// The rate in Hz.
@@ -307,6 +319,19 @@ impl fmt::Display for Notice {
                      options)"
                 )
             }
+            Notice::Dashpot {
+                column,
+                displacement,
+                coefficient,
+                unit,
+            } => write!(
+                f,
+                "column '{column}': a dashpot's force, {} {unit} times the speed of \
+                 '{displacement}' (central differences over {} samples each side), taken off \
+                 every sample (read options)",
+                short(*coefficient),
+                super::speed::HALF_WIDTH
+            ),
             Notice::TimeFromSampleRate { hz, replaced } => {
                 write!(f, "time built from the sample rate {hz} Hz (t = k / {hz})")?;
                 if let Some(c) = replaced {
@@ -729,6 +754,68 @@ impl Record {
             late: late_name,
             other: early_name,
             samples: drop,
+        });
+        Ok(())
+    }
+
+    /// Takes a dashpot's force `c v` off every sample of the force, `v` the
+    /// speed of the displacement ([`speed::of`](super::speed::of)) and `c`
+    /// in the force's canonical unit per displacement's per second (kN s/mm;
+    /// kN m s/deg for a torsion record): a viscous force in parallel with
+    /// the member, which no model here has, as `hyst diagnose` names one.
+    /// Said in a notice; an error if `c` is not positive and finite, or the
+    /// record lacks a channel or its sample times.
+    ///
+    /// ```
+    /// use hyst::data::{Channel, Quantity, Record, Series};
+    /// let t = Series::canonical("t", Quantity::Time, vec![0.0, 0.5, 1.0, 1.5, 2.0]);
+    /// let u = Series::canonical("u", Quantity::Length, vec![0.0, 1.0, 2.0, 3.0, 4.0]);
+    /// let f = Series::canonical("f", Quantity::Force, vec![5.0, 6.0, 7.0, 8.0, 9.0]);
+    /// let mut r = Record::new("damped", Channel::Displacement, Some(u), Some(f), Some(t)).unwrap();
+    /// r.take_dashpot(0.5).unwrap();
+    /// assert_eq!(r.force().unwrap(), &[4.0, 5.0, 6.0, 7.0, 8.0]);
+    /// assert!(r.take_dashpot(-0.5).is_err());
+    /// ```
+    pub fn take_dashpot(&mut self, c: f64) -> Result<(), DataError> {
+        if !(c.is_finite() && c > 0.0) {
+            return Err(DataError::file(
+                &self.source,
+                format!(
+                    "expected a positive viscous coefficient for the dashpot (force per \
+                     displacement/s; a negative one would feed energy in), found {c}"
+                ),
+            ));
+        }
+        let (Some(t), Some(u)) = (&self.time, &self.displacement) else {
+            let missing = if self.time.is_none() {
+                "sample times: give a time column or --sample-rate"
+            } else {
+                "displacement"
+            };
+            return Err(DataError::file(
+                &self.source,
+                format!("cannot take a dashpot off the force: the record has no {missing}"),
+            ));
+        };
+        let (displacement, du) = (u.name.clone(), u.unit.quantity().canonical());
+        let v = super::speed::of(&u.values, &t.values).ok_or_else(|| {
+            DataError::file(
+                &self.source,
+                "cannot take a dashpot off the force: the record has fewer than 3 samples",
+            )
+        })?;
+        let series = self.series_to_change(Channel::Force, "take a dashpot off")?;
+        for (f, v) in series.values.iter_mut().zip(&v) {
+            *f -= c * v;
+        }
+        let unit = format!("{} s/{du}", series.unit.quantity().canonical());
+        let column = series.name.clone();
+        self.check()?;
+        self.notices.push(Notice::Dashpot {
+            column,
+            displacement,
+            coefficient: c,
+            unit,
         });
         Ok(())
     }

@@ -41,14 +41,12 @@ use super::ladder::{Discovery, Step};
 use super::lag::best_effect;
 use super::offset::{refit_residual, scale_of, Gain};
 use super::suspects::Suspect;
+use crate::data::speed;
 use crate::fit::experiment::Drive;
 use crate::fit::objectives::{Target, ENVELOPE_FLOOR};
 use crate::fit::problem::Problem;
 use crate::fit::run::Outcome;
 use serde::Serialize;
-
-/// Half-width (samples) of the central difference that estimates velocity.
-const HALF_WIDTH: usize = 2;
 
 /// Golden sections after the bracket: it narrows to 2.1% of its width.
 const SECTIONS: usize = 8;
@@ -81,22 +79,6 @@ pub struct RateCheck {
     pub best_effect: Option<(String, f64)>,
     /// The evidence in words.
     pub evidence: String,
-}
-
-/// Velocity by central differences over `HALF_WIDTH` samples each side
-/// (one-sided at the ends); `None` if the times do not increase.
-fn velocity(u: &[f64], t: &[f64]) -> Option<Vec<f64>> {
-    let n = u.len();
-    if n < 3 || t.len() != n {
-        return None;
-    }
-    (0..n)
-        .map(|i| {
-            let (a, b) = (i.saturating_sub(HALF_WIDTH), (i + HALF_WIDTH).min(n - 1));
-            let dt = t[b] - t[a];
-            (dt > 0.0).then(|| (u[b] - u[a]) / dt)
-        })
-        .collect()
 }
 
 /// `problem` with the dashpot's force `c v` taken off the measured force.
@@ -193,10 +175,31 @@ fn search(problem: &Problem, x0: &[f64], residual: &[f64], v: &[f64]) -> Option<
         .into()
 }
 
-/// The check on one fit: `outcome` of `problem`, diagnosed as `d`, its
-/// candidates weighed as `suspects`, the record sampled at `time`.
-/// Displacement-driven records with a time base only.
+/// The check on one fit (`hyst diagnose`): `outcome` of `problem`,
+/// diagnosed as `d`, its candidates weighed as `suspects`, the record sampled
+/// at `time`. Displacement-driven records with a time base only. A named
+/// dashpot's evidence ends with the option that takes it off the record.
 pub fn of_fit(
+    problem: &Problem,
+    outcome: &Outcome,
+    d: &Diagnosis,
+    suspects: &[Suspect],
+    time: &[f64],
+) -> Option<RateCheck> {
+    let mut check = weighed(problem, outcome, d, suspects, time)?;
+    if check.significant {
+        check.evidence.push_str(&remedy(check.viscous));
+    }
+    Some(check)
+}
+
+/// What takes a dashpot of `c` off the record, as a sentence.
+fn remedy(c: f64) -> String {
+    format!(" `--dashpot {c:.4e}` takes it off the force as the record is read.")
+}
+
+/// The check on one fit, as [`of_fit`] says, without the remedy.
+fn weighed(
     problem: &Problem,
     outcome: &Outcome,
     d: &Diagnosis,
@@ -206,7 +209,7 @@ pub fn of_fit(
     if problem.exp.drive != Drive::Displacement {
         return None;
     }
-    let v = velocity(&problem.exp.input, time)?;
+    let v = speed::of(&problem.exp.input, time)?;
     let nrmse = outcome.scores.nrmse;
     let model = problem.par.spec.to_string();
     let speeds: Vec<f64> = v.iter().map(|v| v.abs()).filter(|v| *v > 0.0).collect();
@@ -284,24 +287,29 @@ pub fn of_fit(
 /// the dashpot alone does that, the evidence says the effects may stand in
 /// for it.
 pub fn of_ladder(discovery: &Discovery, time: &[f64]) -> Option<RateCheck> {
-    let on = |s: &Step| of_fit(&s.problem, &s.outcome, &s.diagnosis, &s.suspects, time);
+    let on = |s: &Step| weighed(&s.problem, &s.outcome, &s.diagnosis, &s.suspects, time);
     let first_step = &discovery.steps[0];
     let first = on(first_step);
-    if discovery.steps.len() == 1 {
-        return first;
-    }
     let last_step = discovery.last();
     let nrmse = last_step.outcome.scores.nrmse;
     let stands_in = first
         .clone()
-        .filter(|f| f.significant && f.nrmse_with <= nrmse);
-    let mut kept = match (first, on(last_step)) {
-        (_, Some(l)) if l.significant => Some(l),
-        (Some(f), _) if stands_in.is_some() => Some(f),
-        (Some(f), Some(l)) if !f.significant && f.delta_bic < l.delta_bic => Some(f),
-        (f, l) => l.or(f.filter(|f| !f.significant)),
+        .filter(|f| discovery.steps.len() > 1 && f.significant && f.nrmse_with <= nrmse);
+    let mut kept = if discovery.steps.len() == 1 {
+        first
+    } else {
+        match (first, on(last_step)) {
+            (_, Some(l)) if l.significant => Some(l),
+            (Some(f), _) if stands_in.is_some() => Some(f),
+            (Some(f), Some(l)) if !f.significant && f.delta_bic < l.delta_bic => Some(f),
+            (f, l) => l.or(f.filter(|f| !f.significant)),
+        }
     };
-    if let (Some(k), Some(f)) = (kept.as_mut(), stands_in) {
+    if let Some(k) = kept.as_mut().filter(|k| k.significant) {
+        let Some(f) = stands_in else {
+            k.evidence.push_str(&remedy(k.viscous));
+            return kept;
+        };
         let added: Vec<&str> = last_step
             .spec
             .effects()
@@ -312,12 +320,14 @@ pub fn of_ladder(discovery: &Discovery, time: &[f64]) -> Option<RateCheck> {
         k.evidence.push_str(&format!(
             " On {}, the model the loop started from, the dashpot alone (c = {:.4e}) takes the \
              NRMSE to {:.4}, no worse than {} reaches without it ({nrmse:.4}): the effects the \
-             loop added ({}) may stand in for the dashpot.",
+             loop added ({}) may stand in for the dashpot.{} Run again with it to see which of \
+             them the record needs beside it.",
             f.model,
             f.viscous,
             f.nrmse_with,
             last_step.spec,
             added.join(", "),
+            remedy(f.viscous),
         ));
     }
     kept
@@ -332,20 +342,4 @@ fn quantiles(x: &[f64]) -> (f64, f64) {
     s.sort_by(f64::total_cmp);
     let at = |q: f64| s[((s.len() - 1) as f64 * q).round() as usize];
     (at(0.1), at(0.9))
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn velocity_of_a_ramp_is_its_slope() {
-        let t: Vec<f64> = (0..20).map(|i| i as f64 * 0.01).collect();
-        let u: Vec<f64> = t.iter().map(|t| 3.0 * t).collect();
-        for v in velocity(&u, &t).unwrap() {
-            assert!((v - 3.0).abs() < 1e-12, "{v}");
-        }
-        let backwards: Vec<f64> = t.iter().rev().copied().collect();
-        assert!(velocity(&u, &backwards).is_none());
-    }
 }
