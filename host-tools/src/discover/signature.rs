@@ -136,6 +136,19 @@ fn pinching(d: &Diagnosis) -> Signature {
     }
 }
 
+/// A fall of the peak force a cycle in words: one below zero is a rise, said
+/// as one (found by review: "falls by -21.1% a cycle").
+fn fall(x: f64) -> String {
+    let percent = 100.0 * x;
+    if percent.abs() < 0.05 {
+        "stays level (within 0.05%)".into()
+    } else if percent > 0.0 {
+        format!("falls by {percent:.1}%")
+    } else {
+        format!("rises by {:.1}%", -percent)
+    }
+}
+
 /// The fall of the peak force a cycle between consecutive cycles of equal
 /// amplitude (within 5%, both complete), measured and model, or None when the record has no
 /// such pair. Each is one minus the ratio of the summed later peaks to the
@@ -195,9 +208,10 @@ fn strength(d: &Diagnosis) -> Signature {
     let mut sentence = String::new();
     if let Some((meas, model)) = drops {
         sentence.push_str(&format!(
-            "At repeated cycles of equal amplitude the measured peak force falls by {:.1}% a cycle, the model's by {:.1}%",
-            100.0 * meas,
-            100.0 * model
+            "At repeated cycles of equal amplitude the measured peak force {} a cycle, the \
+             model's {}",
+            fall(meas),
+            fall(model)
         ));
     }
     if rs.len() >= 3 {
@@ -438,6 +452,13 @@ fn asymmetry(d: &Diagnosis) -> Signature {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_peak_force_that_grows_is_said_to_rise() {
+        assert_eq!(fall(0.036), "falls by 3.6%");
+        assert_eq!(fall(-0.211), "rises by 21.1%");
+        assert_eq!(fall(-0.0002), "stays level (within 0.05%)");
+    }
 
     fn cycle(amplitude: f64, measured: f64, model: f64) -> CycleStats {
         CycleStats {

@@ -207,20 +207,19 @@ pub fn check(d: &Diagnosis, drive: &Drive) -> Option<SlipCheck> {
             100.0 * share,
         )
     } else {
+        let band = 50.0 * TAU;
+        let measured = band_words(plateau, band);
         format!(
-        "In {reversals} half-cycles the measured force stays within {:.0}% of its peak around \
-         zero over {plateau:.4} mm of displacement (median), the model's over {model_plateau:.4} mm; \
-         the measured band at {:.0}% is {:.0}% as wide as at {:.0}% (flatness {flatness:.2}: \
-         about 0.5 where the force crosses zero with a slope, 1 on a plateau), and it is wider \
-         than the model's by {:.1}% of the half-cycle's displacement. {:.0}% of the squared \
-         error lies in these bands. {verdict}",
-        50.0 * TAU,
-        50.0 * TAU,
-        100.0 * flatness,
-        100.0 * TAU,
-        100.0 * excess,
-        100.0 * share,
-    )
+            "In {reversals} half-cycles the measured force {measured}, the model's stays in it \
+             over {model_plateau:.4} mm; the measured band at {band:.0}% is {:.0}% as wide as at \
+             {:.0}% (flatness {flatness:.2}: about 0.5 where the force crosses zero with a slope, \
+             1 on a plateau), and it is wider than the model's by {:.1}% of the half-cycle's \
+             displacement. {:.0}% of the squared error lies in these bands. {verdict}",
+            100.0 * flatness,
+            100.0 * TAU,
+            100.0 * excess,
+            100.0 * share,
+        )
     };
     Some(SlipCheck {
         significant,
@@ -273,9 +272,40 @@ pub fn of_ladder(discovery: &Discovery, last: Option<SlipCheck>) -> Option<SlipC
     }
 }
 
+/// What the measured force does in the band within `band` percent of its
+/// peak around zero, whose median width is `plateau` (mm). A band of no
+/// width is a force that passes it between two samples: "over 0.0000 mm"
+/// read as a glitch (found by review).
+fn band_words(plateau: f64, band: f64) -> String {
+    if plateau > 0.0 {
+        format!(
+            "stays within {band:.0}% of its peak around zero over {plateau:.4} mm of \
+             displacement (median)"
+        )
+    } else {
+        format!(
+            "passes the band within {band:.0}% of its peak around zero between two samples \
+             (median: no sample inside it)"
+        )
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_band_passed_between_two_samples_is_said_so() {
+        assert_eq!(
+            band_words(0.0556, 5.0),
+            "stays within 5% of its peak around zero over 0.0556 mm of displacement (median)"
+        );
+        assert_eq!(
+            band_words(0.0, 5.0),
+            "passes the band within 5% of its peak around zero between two samples (median: no \
+             sample inside it)"
+        );
+    }
 
     #[test]
     fn band_around_a_plateau_and_a_slope() {
