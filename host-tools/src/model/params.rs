@@ -17,7 +17,7 @@ use super::{Extras, ModelSpec};
 use crate::data::json_place::JsonFile;
 use crate::data::{Quantity, Unit};
 use anyhow::{anyhow, bail, Context, Result};
-use hysteresis::bwbn::{BwbnParams, ENERGY_LIMIT};
+use hysteresis::bwbn::{BwbnParams, Rule, ENERGY_LIMIT};
 use serde_json::{Map, Value};
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -246,9 +246,17 @@ impl ParamFile {
                 );
             }
         }
-        let built = spec
-            .build(|n| self.values.get(n).copied())
-            .map_err(|e| anyhow!("{}: {e}", self.at(&[e.field])))?;
+        let built = spec.build(|n| self.values.get(n).copied()).map_err(|e| {
+            let limit = if matches!(e.rule, Rule::DegradesToZero | Rule::PinchingReversesRate)
+                && !self.values.contains_key(ENERGY_LIMIT)
+            {
+                "; the file gives no \"energy_limit\", so the rate is checked at every energy: \
+                 give the largest the member dissipates (a fit writes twice its record's)"
+            } else {
+                ""
+            };
+            anyhow!("{}: {e}{limit}", self.at(&[e.field]))
+        })?;
         // A limit no effect reads did nothing, in silence.
         if self.values.contains_key(ENERGY_LIMIT) && !spec.reads_energy() {
             bail!(
@@ -419,5 +427,31 @@ mod tests {
         let f = parse(&bw.replace("{", r#"{"model": "bw+pinching", "zeta0": 0.5, "#)).unwrap();
         let (p, _) = f.build(f.spec(None).unwrap(), false).unwrap();
         assert_eq!(p.energy_limit(), 50.0);
+        // A linear degradation reaches zero at some energy: without a limit the rule holds at
+        // every energy, which the file is told, since it gave no limit to lower (found by review).
+        let degrading = r#"{"model": "bw+a-degradation", "k0": 6, "alpha": 0.2, "n": 1.2,
+            "beta": 2, "gamma": -1, "delta_A": 0.01"#;
+        let own = |t: &str| {
+            let f = parse(t).unwrap();
+            f.build(f.spec(None).unwrap(), false).map(|_| ())
+        };
+        let m = own(&format!("{degrading}}}")).unwrap_err().to_string();
+        assert!(
+            m.contains("delta_A drives its degradation function to zero")
+                && m.ends_with(
+                    "the file gives no \"energy_limit\", so the rate is checked at every \
+                     energy: give the largest the member dissipates (a fit writes twice its \
+                     record's)"
+                ),
+            "{m}"
+        );
+        assert!(own(&format!("{degrading}, \"energy_limit\": 50}}")).is_ok());
+        let m = own(&format!("{degrading}, \"energy_limit\": 500}}"))
+            .unwrap_err()
+            .to_string();
+        assert!(
+            m.contains("delta_A drives") && !m.contains("gives no"),
+            "{m}"
+        );
     }
 }
