@@ -347,13 +347,17 @@ impl PeakRatioTest {
     }
 }
 
-/// The test over the cycles whose measured and model peaks both have the
-/// sign of their direction, or None with fewer than three of them.
+/// The test over the complete cycles whose measured and model peaks both
+/// have the sign of their direction, or None with fewer than three of them.
+/// A cycle cut short has not reached its peaks: a record of twelve cycles
+/// that ends back at zero was tested "over 13 cycles", the last a quarter
+/// cycle whose positive peak is the force left at zero (found by review).
 fn peak_ratio_test(cycles: &[CycleStats]) -> Option<PeakRatioTest> {
     let diffs: Vec<f64> = cycles
         .iter()
         .filter(|c| {
-            c.peak_positive.0 > 0.0
+            c.complete
+                && c.peak_positive.0 > 0.0
                 && c.peak_negative.0 < 0.0
                 && c.peak_positive.1 > 0.0
                 && c.peak_negative.1 < 0.0
@@ -509,6 +513,14 @@ mod tests {
         assert!(!peak_ratio_test(&shared).unwrap().consistent());
         // Two cycles cannot be tested.
         assert_eq!(peak_ratio_test(&off[..2]), None);
+        // A last cycle cut short is not counted: its peaks are not the cycle's.
+        let mut cut = off.clone();
+        cut.push(CycleStats {
+            complete: false,
+            ..two_sided((3.0, 9.0), (100.0, 100.0))
+        });
+        assert_eq!(peak_ratio_test(&cut), peak_ratio_test(&off));
+        assert_eq!(peak_ratio_test(&cut).unwrap().cycles, 5);
         // Student's t tables: 2.0395 at 31, 1.9799 at 120.
         assert!((t_95(31) - 2.0395).abs() < 2e-4, "{}", t_95(31));
         assert!((t_95(120) - 1.9799).abs() < 2e-4, "{}", t_95(120));
