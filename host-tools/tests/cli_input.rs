@@ -1731,3 +1731,29 @@ fn negate_flips_a_channel_and_a_record_that_gives_out_energy_is_named() {
     assert!(!note.contains("gives out energy"), "{note}");
     assert_eq!(fixed, clean_nrmse);
 }
+
+/// `--max-rows` reads the head of a file whose tail is something else (here a logger's
+/// summary lines), says how much it left, and fits what it read as if the tail were not there.
+#[test]
+fn max_rows_reads_the_head_of_a_file_and_says_what_it_left() {
+    let clean = column_record();
+    let rows = clean.lines().count() - 1;
+    let tailed = write(
+        "tailed.csv",
+        &format!("{clean}test ended\npeak force,12.3\n"),
+    );
+    let e = err(hyst(&["fit", &tailed, "--method", "lsq"]));
+    assert!(e.contains("tailed.csv:"), "{e}");
+    let rows_arg = rows.to_string();
+    let (nrmse, note) = lsq_fit(&tailed, &["--max-rows", &rows_arg]);
+    assert!(
+        note.contains(&format!(
+            "2 rows from line {} on not read, as asked",
+            rows + 2
+        )),
+        "{note}"
+    );
+    assert_eq!(nrmse, lsq_fit(&write("head.csv", &clean), &[]).0);
+    let e = err(hyst(&["fit", &tailed, "--max-rows", "0"]));
+    assert!(e.contains("--max-rows") && e.contains("0"), "{e}");
+}

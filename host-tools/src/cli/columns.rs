@@ -148,6 +148,11 @@ pub struct ReadArgs {
     /// Skip this many leading data rows (each is reported).
     #[arg(long, default_value_t = 0)]
     pub skip_rows: usize,
+    /// Read at most this many data rows after the skipped ones and not the
+    /// rest of the file (a tail of other data or of text; how many rows were
+    /// left is reported).
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u64).range(1..))]
+    pub max_rows: Option<u64>,
     /// Drive the model with the displacement (or twist) as measured, even where
     /// its noise makes most of its reversals (by default such a record is made
     /// monotone between the test's reversals, with a note).
@@ -388,6 +393,9 @@ impl ReadArgs {
     /// The read options these arguments ask for.
     pub fn options(&self) -> ReadOptions {
         let mut opts = ReadOptions::default().skip_rows(self.skip_rows);
+        if let Some(rows) = self.max_rows {
+            opts = opts.max_rows(usize::try_from(rows).unwrap_or(usize::MAX));
+        }
         if let Some(hz) = self.sample_rate {
             opts = opts.sample_rate(hz);
         }

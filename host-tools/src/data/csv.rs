@@ -714,7 +714,17 @@ pub(crate) fn parse(file: &Path, text: &str, options: &ReadOptions) -> Result<Re
         .map(|r| r.col.index)
         .collect();
     let (mut first_comma, mut first_point) = (None, None);
-    for &(line, t) in rest {
+    let mut taken = 0;
+    for (k, &(line, t)) in rest.iter().enumerate() {
+        // Rows past the most asked for are not read at all: a tail of other
+        // data or of text is what the option is for.
+        if options.max_rows == Some(taken) {
+            notices.push(Notice::RowsNotRead {
+                from: format!("line {line}"),
+                rows: rest.len() - k,
+            });
+            break;
+        }
         let raw: Vec<&str> = t.split(sep).collect();
         if raw.len() != width {
             return Err(field_count(line, raw.len()));
@@ -774,6 +784,7 @@ pub(crate) fn parse(file: &Path, text: &str, options: &ReadOptions) -> Result<Re
         {
             r.take(file, line, &f)?;
         }
+        taken += 1;
     }
     let rows = match (&disp, &force) {
         (Some(d), _) => d.values.len(),

@@ -469,6 +469,24 @@ pub(crate) fn parse(file: &Path, text: &str, options: &ReadOptions) -> Result<Re
             format!("expected a sample after skipping {skip}, found {n} in all"),
         ));
     }
+    // Samples past the most asked for are not read.
+    let n = match options.max_rows {
+        Some(most) if n - skip > most => {
+            let kept = skip + most;
+            raw.disp.2.truncate(kept);
+            raw.force.2.truncate(kept);
+            // A time array of another length is left to the check below.
+            if let Some(t) = raw.time.as_mut().filter(|t| t.2.len() == n) {
+                t.2.truncate(kept);
+            }
+            raw.notices.push(Notice::RowsNotRead {
+                from: format!("sample {kept}"),
+                rows: n - kept,
+            });
+            kept
+        }
+        _ => n,
+    };
     let mut notices = raw.notices;
     for k in 0..skip {
         notices.push(Notice::SkippedRow {

@@ -74,6 +74,10 @@ pub struct ReadOptions {
     /// Skip this many leading data rows (e.g. a point count written as a data
     /// row); each skipped row is reported as a notice.
     pub skip_rows: usize,
+    /// Read at most this many data rows after the skipped ones; the rest of
+    /// the file is not read (a tail of other data or of text), and how much
+    /// of it there was is reported as a notice.
+    pub max_rows: Option<usize>,
     /// Constants or lines taken off a channel once it is read (a known zero
     /// offset or drift of an instrument; [`Record::subtract`]), in turn, each
     /// reported as a notice; two for one channel add up.
@@ -118,6 +122,12 @@ impl ReadOptions {
     /// Skips leading data rows.
     pub fn skip_rows(mut self, rows: usize) -> Self {
         self.skip_rows = rows;
+        self
+    }
+
+    /// Reads at most `rows` data rows after the skipped ones.
+    pub fn max_rows(mut self, rows: usize) -> Self {
+        self.max_rows = Some(rows);
         self
     }
 
@@ -263,6 +273,12 @@ pub fn read_str(
     format: Format,
     options: &ReadOptions,
 ) -> Result<Record, DataError> {
+    if options.max_rows == Some(0) {
+        return Err(DataError::file(
+            name.as_ref(),
+            "expected a positive number of rows to read at most, found 0",
+        ));
+    }
     let mut record = match format {
         Format::Csv => csv::parse(name.as_ref(), text, options),
         Format::Json => json::parse(name.as_ref(), text, options),

@@ -152,6 +152,13 @@ pub enum Notice {
         /// Their names (with a reason when one is useful).
         columns: Vec<String>,
     },
+    /// Data rows past the most the caller asked to read, not read.
+    RowsNotRead {
+        /// Where they begin: `line 1204` (CSV) or `sample 1200` (JSON).
+        from: String,
+        /// How many there were.
+        rows: usize,
+    },
     /// A data row the caller asked to skip, with its text.
     SkippedRow {
         /// Where: `line 4` (CSV) or `sample 0` (JSON).
@@ -246,6 +253,13 @@ impl fmt::Display for Notice {
             ),
             Notice::IgnoredColumns { columns } => {
                 write!(f, "columns not read: {}", columns.join(", "))
+            }
+            Notice::RowsNotRead { from, rows } => {
+                let s = if *rows == 1 { "" } else { "s" };
+                write!(
+                    f,
+                    "{rows} row{s} from {from} on not read, as asked (read options)"
+                )
             }
             Notice::SkippedRow { at, text } => {
                 write!(f, "row at {at} skipped as asked: '{text}'")

@@ -335,6 +335,61 @@ fn skipped_rows_are_reported() {
     );
 }
 
+/// Rows past the most asked for are not read, whatever they hold (a tail of text a logger
+/// appended), and how many there were is reported; in JSON the samples past it are dropped, a
+/// time array with them.
+#[test]
+fn rows_past_the_most_asked_for_are_not_read() {
+    let text = "disp_mm,force_kN\n1955.0,0.0\n0.5,1\n1.0,2\n1.5,3\nend of test\n;;;\n";
+    let most = ReadOptions::default().skip_rows(1).max_rows(2);
+    let r = read_str("a.csv", text, Format::Csv, &most).unwrap();
+    assert_eq!(r.displacement().unwrap(), &[0.5, 1.0]);
+    assert_eq!(
+        r.notices().last().unwrap(),
+        &Notice::RowsNotRead {
+            from: "line 5".into(),
+            rows: 3
+        }
+    );
+    assert_eq!(
+        r.notices().last().unwrap().to_string(),
+        "3 rows from line 5 on not read, as asked (read options)"
+    );
+    // Without the option, the tail is an error at its line.
+    assert!(csv_error("a.csv", text, &ReadOptions::default()).starts_with("a.csv:6:"));
+    // As many as the file has: nothing to report.
+    let all = ReadOptions::default().max_rows(3);
+    let r = read_str(
+        "b.csv",
+        "disp_mm,force_kN\n0.5,1\n1.0,2\n",
+        Format::Csv,
+        &all,
+    )
+    .unwrap();
+    assert_eq!(r.len(), 2);
+    assert!(r.notices().is_empty(), "{:?}", r.notices());
+    let none = ReadOptions::default().max_rows(0);
+    assert_eq!(
+        csv_error("a.csv", text, &none),
+        "a.csv: expected a positive number of rows to read at most, found 0"
+    );
+
+    let json = r#"{"displacement": [0, 1, 2, 3], "force": [0, 5, 9, 12],
+        "time": [0, 0.1, 0.2, 0.3]}"#;
+    let r = read_str("p.json", json, Format::Json, &most).unwrap();
+    assert_eq!(r.displacement().unwrap(), &[1.0, 2.0]);
+    assert_eq!(r.force().unwrap(), &[5.0, 9.0]);
+    assert_eq!(r.time().unwrap(), &[0.1, 0.2]);
+    assert!(r.notices().contains(&Notice::RowsNotRead {
+        from: "sample 3".into(),
+        rows: 1
+    }));
+    // A time array of another length is still refused.
+    let short = r#"{"displacement": [0, 1, 2, 3], "force": [0, 5, 9, 12], "time": [0, 0.1]}"#;
+    let e = read_str("p.json", short, Format::Json, &most).unwrap_err();
+    assert!(e.to_string().contains("expected as many values as"), "{e}");
+}
+
 /// A spreadsheet's error value (`#N/A`, `#DIV/0!`) starts a data row with `#`: the row has the
 /// header's fields, so it is read as data and refused at its line, not dropped as a comment (found
 /// by review: 400 of 401 rows read, no word). A comment among the rows is skipped and reported.
