@@ -1197,7 +1197,7 @@ fn a_candidate_effect_parameter_is_held_when_it_is_added() {
         "zeta0=1.5",
     ]));
     assert!(
-        e.contains("the candidate pinching") && e.contains("cannot fix `zeta0` to 1.5"),
+        e.contains("error: --fix for the candidate pinching: cannot fix `zeta0` to 1.5"),
         "{e}"
     );
     let e = err(hyst(&[

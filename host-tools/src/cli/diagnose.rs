@@ -172,9 +172,11 @@ pub fn initial_fit(common: &Common, params: Option<&Path>, bar: &Bar) -> Result<
         let held = options.held.iter().filter(|(n, _)| e.owns(n));
         let fixed: Fixes = own.iter().chain(held).cloned().collect();
         if fixed.len() > own.len() {
-            Problem::new(common.model.with(e), problem.exp.clone(), &fixed).with_context(|| {
-                format!("{}: the candidate {}", common.data.display(), e.name())
-            })?;
+            // The record was taken above: what fails here is the held value,
+            // which the data file's name in front would blame on the file
+            // (found by review).
+            Problem::new(common.model.with(e), problem.exp.clone(), &fixed)
+                .with_context(|| format!("--fix for the candidate {}", e.name()))?;
         }
     }
     if problem.dim() == 0 {
