@@ -101,6 +101,23 @@ fn recorded_baseline(value: &Value) -> Option<Baseline> {
     }
 }
 
+/// Parses `C` for `--dashpot`: a positive, finite viscous coefficient (a
+/// negative one would feed energy in), refused here rather than as a fault of
+/// the record read.
+pub fn parse_dashpot(text: &str) -> Result<f64> {
+    let c: f64 = text
+        .trim()
+        .parse()
+        .map_err(|_| anyhow!("`{text}` is not a number"))?;
+    if !(c.is_finite() && c > 0.0) {
+        bail!(
+            "expected a positive viscous coefficient for the dashpot (force per displacement/s; \
+             a negative one would feed energy in), found {c}"
+        );
+    }
+    Ok(c)
+}
+
 /// Parses `CHANNEL=SAMPLES` for `--lag`: `force=1` (the force reads one
 /// sample late), `displacement=-2`.
 pub fn parse_lag(text: &str) -> Result<(Channel, i64)> {
@@ -187,7 +204,7 @@ pub struct ReadArgs {
     /// again with it to see which effects the record needs beside it. Needs
     /// the record's sample times (a time column or `--sample-rate`); applied
     /// after `--negate`, `--subtract` and `--lag`.
-    #[arg(long, value_name = "C", allow_negative_numbers = true)]
+    #[arg(long, value_name = "C", allow_negative_numbers = true, value_parser = parse_dashpot)]
     pub dashpot: Option<f64>,
 }
 

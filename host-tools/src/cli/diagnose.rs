@@ -312,10 +312,10 @@ impl Beyond {
     /// Takes the check for a lag between the channels ([`lag::of_fit`],
     /// [`lag::of_ladder`]), after the offsets ([`Beyond::set_offsets`]) and
     /// the dashpot ([`Beyond::rate`]): a named offset, drift or dashpot that
-    /// fits better is taken off first ([`lag::yield_to`]). A named lag leaves a residual that follows the
-    /// speed of loading as well (a force one sample late was flagged as rate
-    /// dependence: found by review), which the rate check's evidence then
-    /// says.
+    /// fits better is taken off first ([`lag::yield_to`]). A named lag leaves
+    /// a residual that follows the speed of loading as well (a force one
+    /// sample late was flagged as rate dependence: found by review), which
+    /// the rate check's evidence then says.
     pub fn set_lag(&mut self, mut lag: Option<LagCheck>) {
         let named =
             |o: &Option<OffsetCheck>| o.as_ref().filter(|o| o.significant).map(|o| o.nrmse_with);
