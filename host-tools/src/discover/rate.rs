@@ -122,8 +122,9 @@ impl Trial {
 /// then narrowed by [`SECTIONS`] golden sections. `None` where no `c > 0`
 /// improves on the fit.
 fn search(problem: &Problem, x0: &[f64], residual: &[f64], v: &[f64]) -> Option<Trial> {
-    let rms = |x: &[f64]| (x.iter().map(|x| x * x).sum::<f64>() / x.len() as f64).sqrt();
-    let (rv, rf) = (rms(v), rms(&problem.exp.output));
+    let rv = (v.iter().map(|v| v * v).sum::<f64>() / v.len() as f64).sqrt();
+    // The force's RMS, as the fit's target already holds it.
+    let rf = problem.target.rms;
     if !(rv > 0.0 && rf > 0.0) {
         return None;
     }
