@@ -13,7 +13,7 @@
 use super::experiment::{Drive, Experiment};
 use crate::model::{EffectRef, Extras, ModelSpec};
 use anyhow::{bail, Result};
-use hysteresis::bwbn::{BwbnParams, EffectKind, ParamError, ParamSpec, Unit};
+use hysteresis::bwbn::{BwbnParams, EffectKind, ParamError, ParamSpec, Rule, Unit};
 use hysteresis::Scalar;
 use nalgebra::DMatrix;
 use std::collections::BTreeMap;
@@ -307,34 +307,6 @@ impl Parametrization {
                 bail!("`{name}` is fixed twice (to {before} and to {v}): fix it once");
             }
         }
-        // A fixed value the model refuses on its own (alpha = 5, k0 = 0) is named here, not
-        // found later as a start that cannot be simulated: the set is built with the fixed
-        // values and every other parameter at the value that switches its effect off.
-        if let Err(e) = spec.build(|name| {
-            fixed_map.get(name).copied().or_else(|| {
-                all.iter()
-                    .find(|s| s.name == name)
-                    .map(|s| f64::from(s.off))
-            })
-        }) {
-            if let Some(v) = fixed_map.get(e.field) {
-                bail!("cannot fix `{}` to {v}: {e}", e.field);
-            }
-        }
-        if let Some(&xi) = fixed_map.get("xi") {
-            if xi < 0.0 {
-                bail!("cannot fix `xi` to {xi}: the damping ratio must not be negative");
-            }
-        }
-        let free: Vec<Free> = all
-            .iter()
-            .filter(|s| !fixed_map.contains_key(s.name))
-            .map(|s| Free {
-                spec: *s,
-                lo: s.fit_range.0 as f64,
-                hi: s.fit_range.1 as f64,
-            })
-            .collect();
         // Degradation that lowers a function (A, nu, eta, the pinching width)
         // is only valid below the energy where it would reach zero; fitted
         // sets are validated up to twice the work the record puts in.
@@ -357,6 +329,46 @@ impl Parametrization {
             )
         });
         let energy_limit = (energy_driven && work > 0.0).then_some(2.0 * work / per_mass);
+        // A fixed value the model refuses on its own (alpha = 5, k0 = 0) is named here, not
+        // found later as a start that cannot be simulated: the set is built with the fixed
+        // values, every other parameter at the value that switches its effect off, and the
+        // energy range the fit validates for (a degradation rate is refused only where it
+        // drives its function to zero within that range).
+        if let Err(e) = spec.build(|name| {
+            if name == hysteresis::bwbn::ENERGY_LIMIT {
+                return energy_limit;
+            }
+            fixed_map.get(name).copied().or_else(|| {
+                all.iter()
+                    .find(|s| s.name == name)
+                    .map(|s| f64::from(s.off))
+            })
+        }) {
+            if let Some(v) = fixed_map.get(e.field) {
+                // The range is the fit's, not the user's to lower: say what it is.
+                let range = match (e.rule, energy_limit) {
+                    (Rule::DegradesToZero | Rule::PinchingReversesRate, Some(limit)) => format!(
+                        "; the fit checks parameter sets up to twice the record's work ({limit:.4e}): fix a lower rate"
+                    ),
+                    _ => String::new(),
+                };
+                bail!("cannot fix `{}` to {v}: {e}{range}", e.field);
+            }
+        }
+        if let Some(&xi) = fixed_map.get("xi") {
+            if xi < 0.0 {
+                bail!("cannot fix `xi` to {xi}: the damping ratio must not be negative");
+            }
+        }
+        let free: Vec<Free> = all
+            .iter()
+            .filter(|s| !fixed_map.contains_key(s.name))
+            .map(|s| Free {
+                spec: *s,
+                lo: s.fit_range.0 as f64,
+                hi: s.fit_range.1 as f64,
+            })
+            .collect();
         let scales = Scales::of(exp);
         check_scales(&scales, &free, &fixed_map)?;
         Ok(Parametrization {
@@ -621,6 +633,27 @@ mod tests {
         assert_eq!(
             alpha_low.to_string(),
             "alpha is at the lower limit the model allows (0.000000e0)"
+        );
+    }
+
+    /// A degradation rate is valid below the energy where it drives its function to zero; the
+    /// fixed value is checked against the range the fit validates for (twice the record's
+    /// work), not against unlimited energy, where every rate > 0 fails (found by review:
+    /// `--fix delta_A=0.001` was refused).
+    #[test]
+    fn fixed_degradation_rates_are_checked_within_the_fits_energy_range() {
+        let spec = ModelSpec::parse("bw+a-degradation").unwrap();
+        let exp = ramp_record();
+        let p = Parametrization::new(spec, &exp, &[("delta_A".into(), 0.001)]).unwrap();
+        // the ramp's work: 6 kN over 4.95 mm less the triangle below 1 mm
+        let work = 6.0 * 4.95 - 3.0;
+        assert!((p.energy_limit.unwrap() - 2.0 * work).abs() < 1e-9);
+        // A = A0 - delta_A e reaches zero at e = 1 / delta_A: inside 2 x work for 0.1
+        let e = Parametrization::new(spec, &exp, &[("delta_A".into(), 0.1)]).unwrap_err();
+        assert!(
+            e.to_string().starts_with("cannot fix `delta_A` to 0.1")
+                && e.to_string().ends_with("(5.3400e1): fix a lower rate"),
+            "{e}"
         );
     }
 
