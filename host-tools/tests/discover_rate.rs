@@ -87,7 +87,19 @@ fn a_dashpot_is_named_and_its_coefficient_found() {
             r.viscous,
             r.evidence
         );
+        covers(&r, c);
     }
+}
+
+/// The interval given for `c` holds the best `c` and the true one.
+fn covers(r: &rate::RateCheck, c: f64) {
+    let [lo, hi] = r.viscous_interval.expect("an interval where named");
+    assert!(
+        lo < r.viscous && r.viscous < hi && lo <= c && c <= hi,
+        "[{lo}, {hi}] for c = {} against {c}: {}",
+        r.viscous,
+        r.evidence
+    );
 }
 
 #[test]
@@ -123,6 +135,7 @@ fn a_test_at_constant_period_shows_it_at_the_reversals() {
     let (exp, t) = record_with_dashpot(Path::StepWise, 0.1, 6);
     let r = check(exp, &t);
     assert!(r.significant, "{}", r.evidence);
+    covers(&r, 0.1);
 }
 
 /// Along a discovery the dashpot is weighed on the first model, before an
@@ -155,13 +168,27 @@ fn a_discovery_names_the_dashpot_beside_the_effects_it_adds() {
         // The refitted loop takes up part of the dashpot: on the irregular
         // path of seed 11 the best fit of `bw` with a dashpot is at c = 0.074
         // (refits at c from 0.05 to 0.13 measured: NRMSE 0.03907 at 0.07 and
-        // 0.08, 0.03942 at the true 0.1), at 0.094 and 0.092 for seeds 1 and 2.
+        // 0.08, 0.03942 at the true 0.1; the same from the fit of `bw`, from
+        // the default starts and from the true parameters), at 0.094 and 0.092
+        // for seeds 1 and 2. The interval given, 0.059 to 0.088, holds the
+        // record's noise only and misses the truth there; on the step-wise
+        // path it holds it.
         assert!(
             check.viscous > 0.5 * c && check.viscous < 1.2 * c,
             "c = {} against {c}: {}",
             check.viscous,
             check.evidence
         );
+        if which == Path::StepWise {
+            covers(&check, c);
+        } else {
+            let [lo, hi] = check.viscous_interval.expect("an interval where named");
+            assert!(
+                lo < check.viscous && check.viscous < hi,
+                "{}",
+                check.evidence
+            );
+        }
     }
 }
 

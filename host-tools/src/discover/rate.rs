@@ -55,6 +55,14 @@ const SECTIONS: usize = 8;
 /// `c`: a factor of 4096 either way.
 const DOUBLINGS: usize = 12;
 
+/// The likelihood ratio at the ends of the interval given for `c`: chi-squared
+/// with one degree of freedom at 95% (its square root, 1.96, is what the
+/// search for the ends solves for).
+const CHI2_95: f64 = 3.841_458_820_694_124;
+
+/// Refits spent on each end of the interval for `c`.
+const END_REFITS: usize = 8;
+
 /// What the record says about rate dependence.
 #[derive(Clone, Debug, Serialize, PartialEq)]
 pub struct RateCheck {
@@ -65,6 +73,12 @@ pub struct RateCheck {
     /// The viscous coefficient `c` of the best refit, force per
     /// (displacement/s) (kN s/mm for kN and mm): the model lacks `c v`.
     pub viscous: f64,
+    /// Where the record places `c`: the coefficients whose refit fits no
+    /// worse than the best by a likelihood ratio of 3.84 (`n_eff ln(S(c) /
+    /// S(best)) <= 3.84`, chi-squared with one degree of freedom at 95%,
+    /// the model refitted at every `c`). Given where the dashpot is named.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub viscous_interval: Option<[f64; 2]>,
     /// Share of the squared error the dashpot removes.
     pub share: f64,
     /// NRMSE of the model refitted with `c v`.
@@ -176,6 +190,80 @@ fn search(problem: &Problem, x0: &[f64], residual: &[f64], v: &[f64]) -> Option<
         .into()
 }
 
+/// The profile interval of `c` around the best refit `best` (see
+/// [`RateCheck::viscous_interval`]), `zero` the fit's squared error without a
+/// dashpot and `n_eff` the effective sample size the gain was weighed with.
+/// On either side the root of `h(c) = sqrt(n_eff ln(S(c) / S(best))) - 1.96`
+/// is found by regula falsi (the Illinois variant; `h` is near linear in `c`
+/// where `S` is near quadratic), bracketed below by `c = 0` and above by
+/// stepping out from `best` in steps that double; at most [`END_REFITS`]
+/// refits an end. `None` where an end cannot be bracketed or a refit fails.
+fn interval(
+    problem: &Problem,
+    x0: &[f64],
+    v: &[f64],
+    best: &Trial,
+    zero: f64,
+    n_eff: f64,
+) -> Option<[f64; 2]> {
+    let target = CHI2_95.sqrt();
+    let h = |squared: f64| (n_eff * (squared / best.squared).ln()).max(0.0).sqrt() - target;
+    let at = |c: f64| h(Trial::run(problem, x0, v, c).squared);
+    let h_zero = h(zero);
+    if h_zero <= 0.0 {
+        return None;
+    }
+    let lower = root(&at, (0.0, h_zero), (best.c, -target))?;
+    let mut step = best.c - lower;
+    let mut out = (best.c + step, at(best.c + step));
+    let mut inside = (best.c, -target);
+    let mut steps = 1;
+    while out.1 <= 0.0 {
+        if steps == END_REFITS || !out.1.is_finite() {
+            return None;
+        }
+        inside = out;
+        step *= 2.0;
+        out = (best.c + step, at(best.c + step));
+        steps += 1;
+    }
+    let upper = root(&at, out, inside)?;
+    Some([lower, upper])
+}
+
+/// The root of `h` between `(a, h(a))` and `(b, h(b))` of opposite signs by
+/// the Illinois variant of regula falsi: [`END_REFITS`] evaluations, or
+/// fewer where `|h|` falls below 0.01 (the likelihood ratio within 0.04 of
+/// its target).
+fn root(h: &impl Fn(f64) -> f64, a: (f64, f64), b: (f64, f64)) -> Option<f64> {
+    let (mut a, mut b) = (a, b);
+    let mut side = 0i8;
+    for _ in 0..END_REFITS {
+        let c = (a.0 * b.1 - b.0 * a.1) / (b.1 - a.1);
+        let hc = h(c);
+        if !hc.is_finite() {
+            return None;
+        }
+        if hc.abs() < 0.01 {
+            return Some(c);
+        }
+        if (hc > 0.0) == (a.1 > 0.0) {
+            a = (c, hc);
+            if side == -1 {
+                b.1 /= 2.0;
+            }
+            side = -1;
+        } else {
+            b = (c, hc);
+            if side == 1 {
+                a.1 /= 2.0;
+            }
+            side = 1;
+        }
+    }
+    Some((a.0 * b.1 - b.0 * a.1) / (b.1 - a.1))
+}
+
 /// The check on one fit (`hyst diagnose`): `outcome` of `problem`,
 /// diagnosed as `d`, its candidates weighed as `suspects`, the record sampled
 /// at `time`. Displacement-driven records with a time base only. A named
@@ -224,6 +312,7 @@ fn weighed(
             model: model.clone(),
             significant: false,
             viscous: 0.0,
+            viscous_interval: None,
             share: 0.0,
             nrmse_with: nrmse,
             delta_bic: 0.0,
@@ -242,6 +331,17 @@ fn weighed(
         .is_none_or(|(_, e)| gain.nrmse_with <= *e);
     let significant = gain.significant() && at_least_as_good;
     let c = trial.c;
+    let zero = d.residual.iter().map(|r| r * r).sum::<f64>();
+    let viscous_interval = significant
+        .then(|| interval(problem, &outcome.x, &v, &trial, zero, gain.n_eff))
+        .flatten();
+    let placed = match viscous_interval {
+        Some([lo, hi]) => format!(
+            "; the record places it between {lo:.4e} and {hi:.4e}, where the refit's likelihood \
+             ratio to the best stays below 3.84 (95%)"
+        ),
+        None => String::new(),
+    };
     let verdict = if significant {
         let effect = match &best_effect {
             Some((name, e)) => format!(
@@ -265,6 +365,7 @@ fn weighed(
         model: model.clone(),
         significant,
         viscous: c,
+        viscous_interval,
         share: gain.share,
         nrmse_with: gain.nrmse_with,
         delta_bic: gain.delta_bic,
@@ -272,8 +373,8 @@ fn weighed(
         best_effect,
         evidence: format!(
             "With a dashpot c v in parallel (c = {c:.4e} force per displacement/s, the best \
-             found; v the speed by central differences) and {model} refitted, the fit takes {}. \
-             {speed} {verdict}",
+             found{placed}; v the speed by central differences) and {model} refitted, the fit \
+             takes {}. {speed} {verdict}",
             gain.words(nrmse)
         ),
     })
@@ -343,4 +444,31 @@ fn quantiles(x: &[f64]) -> (f64, f64) {
     s.sort_by(f64::total_cmp);
     let at = |q: f64| s[((s.len() - 1) as f64 * q).round() as usize];
     (at(0.1), at(0.9))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::cell::Cell;
+
+    /// The Illinois variant finds a root that plain regula falsi approaches
+    /// from one side only (a convex function), within the tolerance on `h`
+    /// and the budget of evaluations.
+    #[test]
+    fn the_ends_of_the_interval_are_roots_of_the_likelihood_ratio() {
+        let calls = Cell::new(0);
+        let h = |c: f64| {
+            calls.set(calls.get() + 1);
+            c * c * c - 0.125
+        };
+        let c = root(&h, (0.0, h(0.0)), (1.0, h(1.0))).unwrap();
+        // |h| < 0.01 puts c within 0.01 / h'(0.5) = 0.0133 of 0.5.
+        assert!((c - 0.5).abs() < 0.0134, "{c}");
+        assert!(calls.get() <= 2 + END_REFITS, "{} calls", calls.get());
+        // Either order of the bracket.
+        let d = root(&h, (1.0, h(1.0)), (0.0, h(0.0))).unwrap();
+        assert!((d - 0.5).abs() < 0.0134, "{d}");
+        // A refit that fails is no root.
+        assert_eq!(root(&|_| f64::INFINITY, (0.0, -1.0), (1.0, 1.0)), None);
+    }
 }
