@@ -260,10 +260,12 @@ fn pinching_that_grows_beside_degradation_is_named_too() {
 /// zero force is below pinching's gate (the band lowers the stiffness everywhere), and stiffness
 /// degradation, which has no gate, was named in its place on 12 of 18 such records (seeds 1-6,
 /// zeta0 0.15-0.25; found by review on the core's simulator, 4 of 18 there). Pinching alone
-/// fits them decisively better (a BIC 35-59 lower here), so neither is named now, and the
-/// evidence says which fits best. Seeds 2 and 4, two of those that named stiffness degradation.
+/// fits them decisively better (a BIC 35-59 lower here), so stiffness degradation is held back,
+/// and where pinching's best fit has at most `DECISIVE_FIT` (0.95) of the NRMSE of the best
+/// without it, pinching is named on its fit: seed 2 (0.94). Seed 4 (0.95, just above) names
+/// neither, and the evidence says which fits best. Both named stiffness degradation before.
 #[test]
-fn weak_pinching_is_not_named_as_stiffness_degradation() {
+fn weak_pinching_is_named_on_its_fit_or_not_at_all() {
     let values = [
         ("zeta0", 0.2),
         ("p", 0.002),
@@ -293,6 +295,21 @@ fn weak_pinching_is_not_named_as_stiffness_degradation() {
             .filter(|s| s.significant)
             .map(|s| s.effect.name())
             .collect();
+        if seed == 2 {
+            let pinching = suspects
+                .iter()
+                .find(|s| s.effect == EffectRef::Builtin(EffectKind::Pinching))
+                .unwrap();
+            assert_eq!(named, ["pinching"], "seed {seed}: {}", pinching.evidence);
+            assert!(
+                pinching
+                    .evidence
+                    .contains("so it is weighed on its fit all the same"),
+                "seed {seed}: {}",
+                pinching.evidence
+            );
+            continue;
+        }
         assert!(named.is_empty(), "seed {seed}: {named:?}");
         let stiffness = suspects
             .iter()

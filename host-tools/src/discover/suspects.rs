@@ -67,8 +67,17 @@ pub const RESOLVED_NRMSE: f64 = 1e-6;
 /// synthetic records from two simulators (scratch, not kept): with
 /// progressive pinching hidden, this ratio was 0.80 or below, at 1.5% noise
 /// included; with stiffness degradation or nothing hidden, behind 0.2 and
-/// 0.4 mm of displacement noise, 0.986 or above.
-pub const DECISIVE_FIT: f64 = 0.9;
+/// 0.4 mm of displacement noise, 0.986 or above. It was 0.9 until weak
+/// pinching (zeta0 0.15-0.25, a wide band, 2% force noise; the project's
+/// simulator, 18 records) was found at 0.907-0.975, named on the 6 whose
+/// pattern shows and on none by its fit; at 0.95 on 13. On 72 records with
+/// nothing, strength, stiffness or A-degradation hidden (1.5-2% force noise
+/// or displacement noise of 10% of Zu, both paths) it names nothing more:
+/// two with stiffness degradation behind that displacement noise reach 0.935
+/// and 0.947, but their pattern passes and pinching is named on them at 0.9
+/// as well; of the rest where pinching's fit is not beaten by a pair, the
+/// nearest is 0.966 (0.986 at force noise alone).
+pub const DECISIVE_FIT: f64 = 0.95;
 
 /// How many times the best model's BIC gain over the current model a
 /// candidate held back by its signature must gain to hold that model's
