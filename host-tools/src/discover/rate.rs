@@ -219,7 +219,7 @@ fn interval(
     let mut inside = (best.c, -target);
     let mut steps = 1;
     while out.1 <= 0.0 {
-        if steps == END_REFITS || !out.1.is_finite() {
+        if steps == END_REFITS {
             return None;
         }
         inside = out;
@@ -234,8 +234,12 @@ fn interval(
 /// The root of `h` between `(a, h(a))` and `(b, h(b))` of opposite signs by
 /// the Illinois variant of regula falsi: [`END_REFITS`] evaluations, or
 /// fewer where `|h|` falls below 0.01 (the likelihood ratio within 0.04 of
-/// its target).
+/// its target). `None` where an end or a value between is not finite (a
+/// refit that failed: no line to interpolate on).
 fn root(h: &impl Fn(f64) -> f64, a: (f64, f64), b: (f64, f64)) -> Option<f64> {
+    if !(a.1.is_finite() && b.1.is_finite()) {
+        return None;
+    }
     let (mut a, mut b) = (a, b);
     let mut side = 0i8;
     for _ in 0..END_REFITS {
@@ -468,7 +472,15 @@ mod tests {
         // Either order of the bracket.
         let d = root(&h, (1.0, h(1.0)), (0.0, h(0.0))).unwrap();
         assert!((d - 0.5).abs() < 0.0134, "{d}");
-        // A refit that fails is no root.
+        // A refit that fails is no root, between the ends or at one (the
+        // upper end stepped out to a failed refit is not interpolated on).
         assert_eq!(root(&|_| f64::INFINITY, (0.0, -1.0), (1.0, 1.0)), None);
+        calls.set(0);
+        assert_eq!(root(&h, (0.0, -0.125), (1.0, f64::INFINITY)), None);
+        assert_eq!(
+            calls.get(),
+            0,
+            "no refit at a point interpolated on infinity"
+        );
     }
 }
