@@ -97,6 +97,13 @@ pub enum Rule {
 }
 
 impl Rule {
+    /// Whether the rule is checked over `[0, energy_limit]`, so that a value
+    /// it refuses may hold under a lower limit (a degradation rate that
+    /// reaches zero, or pinching that reverses the rate, only at some energy).
+    pub const fn bounded_by_energy_limit(self) -> bool {
+        matches!(self, Rule::DegradesToZero | Rule::PinchingReversesRate)
+    }
+
     fn text(self) -> &'static str {
         match self {
             Rule::NotFinite => "must be a finite number",

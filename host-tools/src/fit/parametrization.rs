@@ -13,7 +13,7 @@
 use super::experiment::{Drive, Experiment};
 use crate::model::{EffectRef, Extras, ModelSpec};
 use anyhow::{bail, Result};
-use hysteresis::bwbn::{BwbnParams, EffectKind, ParamError, ParamSpec, Rule, Unit};
+use hysteresis::bwbn::{BwbnParams, EffectKind, ParamError, ParamSpec, Unit};
 use hysteresis::Scalar;
 use nalgebra::DMatrix;
 use std::collections::BTreeMap;
@@ -346,8 +346,8 @@ impl Parametrization {
         }) {
             if let Some(v) = fixed_map.get(e.field) {
                 // The range is the fit's, not the user's to lower: say what it is.
-                let range = match (e.rule, energy_limit) {
-                    (Rule::DegradesToZero | Rule::PinchingReversesRate, Some(limit)) => format!(
+                let range = match energy_limit {
+                    Some(limit) if e.rule.bounded_by_energy_limit() => format!(
                         "; the fit checks parameter sets up to twice the record's work ({limit:.4e}): fix a lower rate"
                     ),
                     _ => String::new(),

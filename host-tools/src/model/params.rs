@@ -17,7 +17,7 @@ use super::{Extras, ModelSpec};
 use crate::data::json_place::JsonFile;
 use crate::data::{Quantity, Unit};
 use anyhow::{anyhow, bail, Context, Result};
-use hysteresis::bwbn::{BwbnParams, Rule, ENERGY_LIMIT};
+use hysteresis::bwbn::{BwbnParams, ENERGY_LIMIT};
 use serde_json::{Map, Value};
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -247,14 +247,13 @@ impl ParamFile {
             }
         }
         let built = spec.build(|n| self.values.get(n).copied()).map_err(|e| {
-            let limit = if matches!(e.rule, Rule::DegradesToZero | Rule::PinchingReversesRate)
-                && !self.values.contains_key(ENERGY_LIMIT)
-            {
-                "; the file gives no \"energy_limit\", so the rate is checked at every energy: \
+            let limit =
+                if e.rule.bounded_by_energy_limit() && !self.values.contains_key(ENERGY_LIMIT) {
+                    "; the file gives no \"energy_limit\", so the rate is checked at every energy: \
                  give the largest the member dissipates (a fit writes twice its record's)"
-            } else {
-                ""
-            };
+                } else {
+                    ""
+                };
             anyhow!("{}: {e}{limit}", self.at(&[e.field]))
         })?;
         // A limit no effect reads did nothing, in silence.
