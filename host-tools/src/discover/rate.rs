@@ -129,23 +129,23 @@ impl Trial {
     }
 }
 
-/// The best dashpot for the fit `x0` of `problem`, whose residual is
-/// `residual`: from the first guess, the residual's own regression on `v`
+/// The best dashpot for the fit `x0` of `problem`, diagnosed as `d`: from
+/// the first guess, the residual's own regression on `v`
 /// (where that dissipates) or a viscous force of 1% of the record's, doubled
 /// while the fit improves (halved while it does not improve on `c = 0`),
 /// then narrowed by [`SECTIONS`] golden sections. `None` where no `c > 0`
 /// improves on the fit.
-fn search(problem: &Problem, x0: &[f64], residual: &[f64], v: &[f64]) -> Option<Trial> {
+fn search(problem: &Problem, x0: &[f64], d: &Diagnosis, v: &[f64]) -> Option<Trial> {
     let rv = (v.iter().map(|v| v * v).sum::<f64>() / v.len() as f64).sqrt();
     // The force's RMS, as the fit's target already holds it.
     let rf = problem.target.rms;
     if !(rv > 0.0 && rf > 0.0) {
         return None;
     }
-    let zero = residual.iter().map(|r| r * r).sum::<f64>();
+    let zero = d.total_sq;
     // The model's force is measured + r, so the missing force is -r ≈ c v.
     let regressed =
-        -residual.iter().zip(v).map(|(r, v)| r * v).sum::<f64>() / (rv * rv * v.len() as f64);
+        -d.residual.iter().zip(v).map(|(r, v)| r * v).sum::<f64>() / (rv * rv * v.len() as f64);
     let guess = regressed.max(0.01 * rf / rv);
     let run = |c: f64| Trial::run(problem, x0, v, c);
     let mut best = run(guess);
@@ -311,7 +311,7 @@ fn weighed(
         "The speed of loading ranges from {slow:.3e} to {fast:.3e} (10th to 90th percentile)."
     );
     let best_effect = best_effect(suspects);
-    let Some(trial) = search(problem, &outcome.x, &d.residual, &v) else {
+    let Some(trial) = search(problem, &outcome.x, d, &v) else {
         return Some(RateCheck {
             model: model.clone(),
             significant: false,
@@ -335,9 +335,8 @@ fn weighed(
         .is_none_or(|(_, e)| gain.nrmse_with <= *e);
     let significant = gain.significant() && at_least_as_good;
     let c = trial.c;
-    let zero = d.residual.iter().map(|r| r * r).sum::<f64>();
     let viscous_interval = significant
-        .then(|| interval(problem, &outcome.x, &v, &trial, zero, gain.n_eff))
+        .then(|| interval(problem, &outcome.x, &v, &trial, d.total_sq, gain.n_eff))
         .flatten();
     let placed = match viscous_interval {
         Some([lo, hi]) => format!(
