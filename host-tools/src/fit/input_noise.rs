@@ -16,7 +16,9 @@
 //! * the noise is estimated from the third differences ([`noise`]);
 //! * the turning points that rise above it, [`THRESHOLD`] deviations, are
 //!   the reversals of the test (found as the diagnosis finds its cycles:
-//!   [`Cycles`] with that absolute threshold);
+//!   [`Cycles`] with that absolute threshold), and the extreme between an
+//!   end of the record and the nearest of them, which no move confirms on
+//!   the end's side, where it stands out from the end by half of it;
 //! * each of them is placed from the samples around it, by the [`Shape`]
 //!   that fits the record's corners best (two lines meeting, or a parabola),
 //!   since the one sample at a turn is as noisy as any other and the model
@@ -284,8 +286,8 @@ fn least_squares(
 /// nearest reversal counts when its corner (fitted as any other reversal's,
 /// with the record's `shape`) lies beyond that reversal by more than the
 /// threshold, and beyond the mean of the [`CORNER_WINDOW`] samples at the end
-/// by more than half of it: 6.7 deviations of that difference at a corner's
-/// precision (0.6 of the noise's; the mean's is 0.45).
+/// by more than half of it: where the path rests at the end, 4 deviations of
+/// that difference (a corner's is 0.6 of the noise's, the mean's 0.45).
 fn end_turns(
     u: &[f64],
     turns: &[usize],
@@ -664,10 +666,11 @@ mod tests {
     /// ([`end_turns`]). 0.1 mm of noise puts the threshold near 0.6 mm, above
     /// the 0.5 mm of the first (or last) two cycles. Before the rule a turn
     /// was missed on 65 of these 200 records at the start and on 77 at the
-    /// end, and the small cycle's worst sample was more than 2.5 deviations of
-    /// the noise off the path on 65 and 78 (now 5 and 9). A record that rests at zero before its first move gains no
-    /// turn there (on 5 of these 500 the noise of the rest alone passes the
-    /// threshold somewhere, with or without the rule).
+    /// end (now 5 and 8), and the small cycle's worst sample was more than 2.5
+    /// deviations of the noise off the path on 65 and 78 (now 5 and 9). A
+    /// record that rests at zero before its first move gains no turn there (on
+    /// 5 of these 500 the noise of the rest alone passes the threshold
+    /// somewhere, with or without the rule).
     #[test]
     fn small_cycles_at_the_ends_keep_their_turns() {
         let sd = 0.1;
