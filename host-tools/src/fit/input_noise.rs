@@ -298,26 +298,27 @@ fn end_turns(
     let (Some(&first), Some(&last_turn)) = (turns.first(), turns.last()) else {
         return [None, None];
     };
-    let opening = opening_turn(u, first, shape, threshold, describes);
-    let reversed: Vec<f64> = u.iter().rev().copied().collect();
+    let opening = opening_turn(&u[..=first], shape, threshold, describes);
+    // The stretch after the last reversal, read backwards: sample k of it is
+    // sample `end - k` of the record.
+    let tail: Vec<f64> = u[last_turn..].iter().rev().copied().collect();
     let end = u.len() - 1;
-    let closing =
-        opening_turn(&reversed, end - last_turn, shape, threshold, describes).map(|c| Corner {
-            at: end - c.at,
-            ..c
-        });
+    let closing = opening_turn(&tail, shape, threshold, describes).map(|c| Corner {
+        at: end - c.at,
+        ..c
+    });
     [opening, closing]
 }
 
-/// The turn of [`end_turns`] between the start of `u` and its first reversal
-/// `first`.
+/// The turn of [`end_turns`] between the start of `u` and its last sample,
+/// the record's first reversal.
 fn opening_turn(
     u: &[f64],
-    first: usize,
     shape: Shape,
     threshold: f64,
     describes: &dyn Fn(&Corner) -> bool,
 ) -> Option<Corner> {
+    let first = u.len().checked_sub(1)?;
     // Before a trough the path fell from its start, and the opening turn, if
     // any, is the highest sample before it.
     let sign = if u[first] < u[0] { 1.0 } else { -1.0 };
