@@ -16,7 +16,6 @@
 use super::suspects::{self, WeighOptions};
 use crate::fit::problem::Problem;
 use crate::fit::run::{self, Method, Outcome, Quiet};
-use std::collections::BTreeMap;
 
 /// Parameter values by name, as `--fix` gives them.
 type Values = Vec<(String, f64)>;
@@ -58,11 +57,5 @@ pub fn fit(problem: &Problem) -> Option<Outcome> {
     })?;
     // The refits hold the initial values of the degradation laws at 1, as
     // the ladder does; the model as asked may free them.
-    let values: BTreeMap<&str, f64> = grown.values.iter().map(|(k, v)| (*k, *v)).collect();
-    let x0 = problem.par.normalise(&values);
-    let out = run::fit(problem, Method::Lsq, &x0, &Quiet).ok()?;
-    Some(Outcome {
-        method: "lsq (grown from the base model)".to_string(),
-        ..out
-    })
+    run::refit_from(problem, &grown, "grown from the base model").ok()
 }

@@ -35,7 +35,6 @@ use crate::model::{EffectRef, ModelSpec};
 use anyhow::Result;
 use rayon::prelude::*;
 use serde::Serialize;
-use std::collections::BTreeMap;
 
 /// BIC rise below which the backward step takes an effect away: "not
 /// worth more than a bare mention" (Kass and Raftery).
@@ -152,7 +151,6 @@ pub fn removals(
     let floor = diagnosis.segmentation.cycles().half_cycles().len();
     let n_eff = effective_n(&residual, problem.dim(), floor);
     let full = bic(outcome.scores.nrmse.powi(2), problem.dim(), n_eff);
-    let warm: BTreeMap<&str, f64> = outcome.values.iter().map(|(k, v)| (*k, *v)).collect();
     effects
         .par_iter()
         .filter(|e| spec.contains(**e))
@@ -166,13 +164,7 @@ pub fn removals(
                 .map(|(k, v)| (k.to_string(), *v))
                 .collect();
             let p = Problem::new(smaller, problem.exp.clone(), &fixed).ok()?;
-            let x0 = p.par.normalise(&warm);
-            let refit = run::fit(&p, run::Method::Lsq, &x0, &run::Quiet)
-                .ok()
-                .map(|o| Outcome {
-                    method: "lsq (from the model with one more effect)".to_string(),
-                    ..o
-                });
+            let refit = run::refit_from(&p, outcome, "from the model with one more effect").ok();
             let before = earlier
                 .iter()
                 .filter(|s| s.spec == smaller)

@@ -41,7 +41,6 @@ use crate::fit::run::{self, Outcome};
 use crate::model::EffectRef;
 use anyhow::Result;
 use rayon::prelude::*;
-use std::collections::BTreeMap;
 
 /// `delta_BIC` below which a suspect is significant.
 pub const SIGNIFICANT_BIC: f64 = -10.0;
@@ -205,8 +204,7 @@ pub fn refit(
         }
     }
     let richer = Problem::new(spec, problem.exp.clone(), &fixed)?;
-    let warm: BTreeMap<&str, f64> = outcome.values.iter().map(|(k, v)| (*k, *v)).collect();
-    let x0 = richer.par.normalise(&warm);
+    let x0 = richer.par.normalise(&outcome.values);
     let (lo, hi) = richer.par.bounds();
     let new: Vec<usize> = richer
         .par
@@ -282,13 +280,7 @@ pub fn refit(
 fn from_richer(single: &Fitted, richer: &Fitted) -> Option<Fitted> {
     let (problem, _) = single.fit.as_ref()?;
     let (_, outcome) = richer.fit.as_ref()?;
-    let warm: BTreeMap<&str, f64> = outcome.values.iter().map(|(k, v)| (*k, *v)).collect();
-    let x0 = problem.par.normalise(&warm);
-    let o = run::fit(problem, run::Method::Lsq, &x0, &run::Quiet).ok()?;
-    let o = Outcome {
-        method: "lsq (from a richer model)".to_string(),
-        ..o
-    };
+    let o = run::refit_from(problem, outcome, "from a richer model").ok()?;
     Some(fitted(single.effects.clone(), problem.clone(), o))
 }
 

@@ -218,6 +218,19 @@ pub fn fit(
     fit_with(problem, method, x0, &Evolution::default(), progress)
 }
 
+/// `problem` refitted by bounded least squares from the values of `from`, a
+/// fit of the same record with this model or a neighbouring one: parameters
+/// `problem`'s model lacks are dropped, those `from` lacks start switched off.
+/// The outcome's `method` says where it started: `lsq (LABEL)`.
+pub fn refit_from(problem: &Problem, from: &Outcome, label: &str) -> Result<Outcome> {
+    let x0 = problem.par.normalise(&from.values);
+    let out = fit(problem, Method::Lsq, &x0, &Quiet)?;
+    Ok(Outcome {
+        method: format!("lsq ({label})"),
+        ..out
+    })
+}
+
 /// [`fit`] with explicit settings for [`Method::Nsga2`].
 pub fn fit_with(
     problem: &Problem,
